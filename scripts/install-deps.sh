@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Install MANTA's build and test dependencies from Debian packages.
+# Idempotent: packages already present are skipped, and `apt-get update` runs at most once,
+# only when something is missing. No downloads from anywhere but the Debian archive.
+set -euo pipefail
+
+packages=(
+    build-essential cmake pkg-config
+    libeigen3-dev        # linear algebra, AutoDiffScalar
+    libyaml-cpp-dev      # configuration files
+    libcli11-dev         # command line
+    libspdlog-dev libfmt-dev
+    libboost-dev         # Boost.Odeint (adaptive integration)
+    libgtest-dev libgmock-dev
+    libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+        missing+=("$p")
+    fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+    echo "install-deps: all ${#packages[@]} packages present"
+    exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
