@@ -13,6 +13,7 @@ packages=(
     libboost-dev         # Boost.Odeint (adaptive integration)
     libgtest-dev libgmock-dev
     libbenchmark-dev
+    nlohmann-json3-dev   # JSON output (--json) and JSON files; see docs/adr/0002-json-library.md
 )
 
 missing=()

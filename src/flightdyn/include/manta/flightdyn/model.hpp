@@ -61,6 +61,9 @@ struct FlightModel {
     Environment environment;
     /// Interpolation used for the aero tables in the equations of motion.
     aero::Interpolation interpolation = aero::Interpolation::multilinear;
+    /// True when the aero tables carry alpha-dot or beta-dot columns (set by flightdyn::finalize);
+    /// the equations of motion then solve the implicit angle-rate dependence exactly.
+    bool angle_rate_terms = false;
 };
 
 /// Vector from geometry axes (x aft, y right, z up) to body axes (x fwd, y right, z down).

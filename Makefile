@@ -1,0 +1,55 @@
+# MANTA — the two commands a user needs are `make demo` and `make test`.
+# Every target installs missing Debian packages (scripts/install-deps.sh, idempotent) and builds.
+
+BUILD      ?= build
+BUILD_ASAN ?= build-asan
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_ARGS ?=
+DEMO_OUT   ?= out/demo
+
+.PHONY: all deps configure build demo test validate bench test-asan format check-format clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
+
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+## Run the main job on the Ranger 2000 with the embedded default aircraft.
+demo: build
+	$(BUILD)/bin/manta demo --out $(DEMO_OUT)
+
+## Every unit test and the fast validations against published references.
+test: build
+	ctest --test-dir $(BUILD) -L 'unit|validation' -LE slow --output-on-failure -j $(JOBS)
+
+## The full validation set, slow cases included.
+validate: build
+	ctest --test-dir $(BUILD) -L 'validation|slow' --output-on-failure -j $(JOBS)
+
+## Benchmarks (medians of repeated runs).
+bench: build
+	@bash scripts/run-benchmarks.sh $(BUILD)
+
+## Unit tests under AddressSanitizer and UndefinedBehaviorSanitizer.
+test-asan: deps
+	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DMANTA_SANITIZE=ON -DMANTA_BUILD_BENCH=OFF $(CMAKE_ARGS)
+	cmake --build $(BUILD_ASAN) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	    ctest --test-dir $(BUILD_ASAN) -L 'unit|validation' -LE slow --output-on-failure -j $(JOBS)
+
+format:
+	find src tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+
+check-format:
+	find src tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format --dry-run --Werror
+
+clean:
+	rm -rf $(BUILD) $(BUILD_ASAN)

@@ -1,0 +1,56 @@
+/// `manta`: command-line entry point. Exit codes: 0 success, 2 bad input (configuration, input
+/// files, command-line values), 1 failed computation (no convergence, numerical breakdown).
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "manta/core/error.hpp"
+#include "manta/core/version.hpp"
+
+namespace manta::cli {
+
+void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
+
+}  // namespace manta::cli
+
+int main(int argc, char** argv) {
+    using namespace manta;
+    CLI::App app{"MANTA: aircraft manoeuvres with aerodynamics from flow solutions.\n"
+                 "Run 'manta <command> --help' for the options of a command.",
+                 "manta"};
+    app.set_version_flag("--version", "manta " + core::version());
+    app.require_subcommand(1);
+    bool debug = false;
+    app.add_flag("--debug", debug, "Show debug-level log messages");
+    app.fallthrough();
+
+    cli::Action action;
+    cli::add_atmosphere(app, action);
+    cli::add_config(app, action);
+    cli::add_trim(app, action);
+    cli::add_modes(app, action);
+    cli::add_simulate(app, action);
+    cli::add_demo(app, action);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
+    spdlog::set_level(debug ? spdlog::level::debug : spdlog::level::info);
+    spdlog::set_pattern("%^[%l]%$ %v");
+    try {
+        return action ? action() : 0;
+    } catch (const manta::Error& e) {
+        std::fprintf(stderr, "manta: error: %s\n", e.what());
+        return e.exit_code();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "manta: internal error: %s\n", e.what());
+        return 1;
+    }
+}

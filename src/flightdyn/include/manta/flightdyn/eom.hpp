@@ -1,0 +1,334 @@
+#pragma once
+/// @file eom.hpp
+/// Rigid-body 6-DoF equations of motion over a flat, non-rotating earth (Stevens, Lewis &
+/// Johnson, *Aircraft Control and Simulation*, 3rd ed., Wiley 2015, sec. 2.5-2.6 and 3.6).
+///
+/// One source of truth for forces and moments, `compute_loads`, feeds two state forms:
+///  - Euler-angle form, the paper's state (x, y, z, phi, theta, psi, V, alpha, beta, p, q, r);
+///    singular at theta = +-90 deg and at V = 0;
+///  - quaternion form (x, y, z, q0, q1, q2, q3, u, v, w, p, q, r) with no attitude singularity.
+/// Earth axes x north, y east, z down; altitude h = -z. Body axes x forward, y right, z down.
+/// Everything is templated on the scalar so the same code runs with automatic differentiation.
+
+#include <Eigen/Core>
+#include <cmath>
+
+#include "manta/aero/database.hpp"
+#include "manta/core/scalar.hpp"
+#include "manta/flightdyn/atmosphere.hpp"
+#include "manta/flightdyn/model.hpp"
+
+namespace manta::flightdyn {
+
+/// Control inputs: deflections [rad] with the paper's signs, throttle [0..1].
+template <class T>
+struct Controls {
+    T elevator{0.0};
+    T aileron{0.0};
+    T rudder{0.0};
+    T throttle{0.0};
+};
+
+/// Indices of the Euler-angle state vector (the paper's order).
+namespace euler {
+enum Index : int { x = 0, y, z, phi, theta, psi, V, alpha, beta, p, q, r, size };
+}
+/// Indices of the quaternion state vector (q0 scalar part; body-to-earth rotation).
+namespace quat {
+enum Index : int { x = 0, y, z, q0, q1, q2, q3, u, v, w, p, q, r, size };
+}
+
+template <class T>
+using EulerState = Eigen::Matrix<T, euler::size, 1>;
+template <class T>
+using QuatState = Eigen::Matrix<T, quat::size, 1>;
+template <class T>
+using Vec3 = Eigen::Matrix<T, 3, 1>;
+
+/// Forces and moments on the aircraft and the air data they came from.
+template <class T>
+struct Loads {
+    Vec3<T> force_body;   ///< aerodynamic + thrust force, body axes [N] (gravity excluded)
+    Vec3<T> moment_body;  ///< moment about the CG, body axes [N m]
+    aero::BodyCoefficients<T> coefficients;  ///< about the moment reference point
+    AtmosphereState<T> atmosphere;
+    T airspeed{0.0};  ///< [m/s]
+    T alpha{0.0};     ///< [rad]
+    T beta{0.0};      ///< [rad]
+    T mach{0.0};
+    T dynamic_pressure{0.0};  ///< [Pa]
+    T thrust{0.0};            ///< [N]
+};
+
+/// Set derived flags of a model (whether the aero tables use alpha-dot/beta-dot terms) and check
+/// it is complete; InputError naming what is missing. Call once after building a model.
+void finalize(FlightModel& model);
+/// Check a model is usable (mass, inertia, reference values); InputError otherwise.
+void validate(const FlightModel& model);
+
+namespace detail {
+template <class T>
+T zero_like(const T& x) {
+    return x * 0.0;
+}
+}  // namespace detail
+
+/// Aerodynamic and propulsive loads at altitude `h` [m] for air-relative body velocity
+/// `v_body` [m/s], body rates `omega_body` [rad/s], controls `u`, and angle rates alpha_dot,
+/// beta_dot [rad/s] (used only by tables with alpha-dot/beta-dot columns).
+template <class T>
+[[nodiscard]] Loads<T> compute_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body,
+                                     const Vec3<T>& omega_body, const Controls<T>& u,
+                                     const T& alpha_dot, const T& beta_dot) {
+    using std::asin;
+    using std::atan2;
+    using std::sqrt;
+    Loads<T> L;
+    L.atmosphere = us1976(h);
+    const T V2 = v_body.squaredNorm();
+    L.airspeed = sqrt(V2);
+    const T zero = detail::zero_like(h);
+    const bool moving = core::value_of(L.airspeed) > 1e-9;
+    L.alpha = moving ? T(atan2(v_body.z(), v_body.x())) : zero;
+    L.beta = moving ? T(asin(T(v_body.y() / L.airspeed))) : zero;
+    L.mach = L.airspeed / L.atmosphere.speed_of_sound;
+    L.dynamic_pressure = 0.5 * L.atmosphere.density * V2;
+
+    const double S = m.reference.area, b = m.reference.span, c = m.reference.chord;
+    L.force_body.setConstant(zero);
+    L.moment_body.setConstant(zero);
+    if (m.aero && moving) {
+        aero::AeroQuery<T> q;
+        q.alpha = L.alpha;
+        q.beta = L.beta;
+        q.mach = L.mach;
+        const T inv2V = 0.5 / L.airspeed;
+        q.p_hat = omega_body.x() * b * inv2V;
+        q.q_hat = omega_body.y() * c * inv2V;
+        q.r_hat = omega_body.z() * b * inv2V;
+        q.alpha_dot_hat = alpha_dot * c * inv2V;
+        q.beta_dot_hat = beta_dot * b * inv2V;
+        q.elevator = u.elevator;
+        q.aileron = u.aileron;
+        q.rudder = u.rudder;
+        L.coefficients = m.aero->evaluate(q, m.interpolation);
+        const T qS = L.dynamic_pressure * S;
+        L.force_body << qS * L.coefficients.CX, qS * L.coefficients.CY, qS * L.coefficients.CZ;
+        // Moment about the reference point, then transferred to the CG: M_cg = M_ref + r x F.
+        const Eigen::Vector3d r = body_from_geom(m.moment_reference_geom - m.mass.cg_geom);
+        const Vec3<T>& F = L.force_body;
+        L.moment_body << qS * b * L.coefficients.Cl + (r.y() * F.z() - r.z() * F.y()),
+            qS * c * L.coefficients.Cm + (r.z() * F.x() - r.x() * F.z()),
+            qS * b * L.coefficients.Cn + (r.x() * F.y() - r.y() * F.x());
+    }
+    // Thrust along the thrust line; a moment only if the engine position is off the CG.
+    const T sigma = L.atmosphere.density / 1.225;
+    L.thrust = m.engine.thrust_at(h, L.mach, u.throttle, sigma);
+    using std::cos;
+    using std::sin;
+    const double ce = std::cos(m.engine.thrust_angle), se = std::sin(m.engine.thrust_angle);
+    const Vec3<T> FT(L.thrust * ce, zero, -L.thrust * se);
+    L.force_body += FT;
+    if (m.engine.has_position) {
+        const Eigen::Vector3d r = body_from_geom(
+            Eigen::Vector3d(m.engine.position[0], m.engine.position[1], m.engine.position[2]) - m.mass.cg_geom);
+        L.moment_body.x() += r.y() * FT.z() - r.z() * FT.y();
+        L.moment_body.y() += r.z() * FT.x() - r.x() * FT.z();
+        L.moment_body.z() += r.x() * FT.y() - r.y() * FT.x();
+    }
+    return L;
+}
+
+/// Body-axis accelerations from loads: v_dot = F/m + g_body - omega x v, and
+/// omega_dot = I^-1 (M - omega x (I omega + h_engine)).
+template <class T>
+void rigid_body_accelerations(const FlightModel& m, const Loads<T>& L, const Vec3<T>& gravity_body,
+                              const Vec3<T>& v_body, const Vec3<T>& w, Vec3<T>& v_dot, Vec3<T>& w_dot) {
+    const double inv_m = 1.0 / m.mass.mass;
+    v_dot.x() = L.force_body.x() * inv_m + gravity_body.x() - (w.y() * v_body.z() - w.z() * v_body.y());
+    v_dot.y() = L.force_body.y() * inv_m + gravity_body.y() - (w.z() * v_body.x() - w.x() * v_body.z());
+    v_dot.z() = L.force_body.z() * inv_m + gravity_body.z() - (w.x() * v_body.y() - w.y() * v_body.x());
+    const Eigen::Matrix3d& I = m.mass.inertia;
+    const Eigen::Vector3d& he = m.engine_angular_momentum;
+    Vec3<T> H;
+    H.x() = I(0, 0) * w.x() + I(0, 1) * w.y() + I(0, 2) * w.z() + he.x();
+    H.y() = I(1, 0) * w.x() + I(1, 1) * w.y() + I(1, 2) * w.z() + he.y();
+    H.z() = I(2, 0) * w.x() + I(2, 1) * w.y() + I(2, 2) * w.z() + he.z();
+    const Vec3<T> rhs(L.moment_body.x() - (w.y() * H.z() - w.z() * H.y()),
+                      L.moment_body.y() - (w.z() * H.x() - w.x() * H.z()),
+                      L.moment_body.z() - (w.x() * H.y() - w.y() * H.x()));
+    const Eigen::Matrix3d Ii = I.inverse();
+    w_dot.x() = Ii(0, 0) * rhs.x() + Ii(0, 1) * rhs.y() + Ii(0, 2) * rhs.z();
+    w_dot.y() = Ii(1, 0) * rhs.x() + Ii(1, 1) * rhs.y() + Ii(1, 2) * rhs.z();
+    w_dot.z() = Ii(2, 0) * rhs.x() + Ii(2, 1) * rhs.y() + Ii(2, 2) * rhs.z();
+}
+
+namespace detail {
+
+/// Euler-form derivative for given angle rates used in the aero model (alpha_dot, beta_dot).
+template <class T>
+EulerState<T> euler_rhs_given(const FlightModel& m, const EulerState<T>& s, const Controls<T>& u,
+                              const T& alpha_dot, const T& beta_dot, Loads<T>* loads_out) {
+    using std::cos;
+    using std::sin;
+    using std::tan;
+    const T sphi = sin(s[euler::phi]), cphi = cos(s[euler::phi]);
+    const T sth = sin(s[euler::theta]), cth = cos(s[euler::theta]);
+    const T spsi = sin(s[euler::psi]), cpsi = cos(s[euler::psi]);
+    const T sa = sin(s[euler::alpha]), ca = cos(s[euler::alpha]);
+    const T sb = sin(s[euler::beta]), cb = cos(s[euler::beta]);
+    const T V = s[euler::V];
+    const Vec3<T> v_body(V * ca * cb, V * sb, V * sa * cb);
+    const Vec3<T> w(s[euler::p], s[euler::q], s[euler::r]);
+    const T h = -s[euler::z];
+    Loads<T> L = compute_loads(m, h, v_body, w, u, alpha_dot, beta_dot);
+    const double g = m.environment.gravity;
+    const Vec3<T> g_body(-g * sth, g * sphi * cth, g * cphi * cth);
+    Vec3<T> v_dot, w_dot;
+    rigid_body_accelerations(m, L, g_body, v_body, w, v_dot, w_dot);
+
+    EulerState<T> d;
+    const T &uu = v_body.x(), &vv = v_body.y(), &ww = v_body.z();
+    d[euler::V] = (uu * v_dot.x() + vv * v_dot.y() + ww * v_dot.z()) / V;
+    d[euler::alpha] = (uu * v_dot.z() - ww * v_dot.x()) / (uu * uu + ww * ww);
+    d[euler::beta] = (V * v_dot.y() - vv * d[euler::V]) / (V * V * cb);
+    // Attitude kinematics (3-2-1 Euler angles).
+    const T qs_rc = w.y() * sphi + w.z() * cphi;
+    d[euler::phi] = w.x() + tan(s[euler::theta]) * qs_rc;
+    d[euler::theta] = w.y() * cphi - w.z() * sphi;
+    d[euler::psi] = qs_rc / cth;
+    // Navigation: earth-axis velocity = C_earth_from_body * v_body.
+    d[euler::x] = cth * cpsi * uu + (sphi * sth * cpsi - cphi * spsi) * vv + (cphi * sth * cpsi + sphi * spsi) * ww;
+    d[euler::y] = cth * spsi * uu + (sphi * sth * spsi + cphi * cpsi) * vv + (cphi * sth * spsi - sphi * cpsi) * ww;
+    d[euler::z] = -sth * uu + sphi * cth * vv + cphi * cth * ww;
+    d[euler::p] = w_dot.x();
+    d[euler::q] = w_dot.y();
+    d[euler::r] = w_dot.z();
+    if (loads_out) *loads_out = L;
+    return d;
+}
+
+}  // namespace detail
+
+/// Time derivative of the Euler-angle state. If the aero tables carry alpha-dot or beta-dot
+/// terms the implicit dependence is solved exactly (the derivative is affine in them).
+template <class T>
+[[nodiscard]] EulerState<T> euler_rhs(const FlightModel& m, const EulerState<T>& s, const Controls<T>& u,
+                                      Loads<T>* loads_out = nullptr) {
+    const T zero = s[0] * 0.0;
+    if (!m.angle_rate_terms) return detail::euler_rhs_given(m, s, u, zero, zero, loads_out);
+    // f(a, b) = f0 + K [a, b]; solve a = f_alpha(a, b), b = f_beta(a, b).
+    const EulerState<T> f0 = detail::euler_rhs_given(m, s, u, zero, zero, static_cast<Loads<T>*>(nullptr));
+    const EulerState<T> fa = detail::euler_rhs_given(m, s, u, T(zero + 1.0), zero, static_cast<Loads<T>*>(nullptr));
+    const EulerState<T> fb = detail::euler_rhs_given(m, s, u, zero, T(zero + 1.0), static_cast<Loads<T>*>(nullptr));
+    const T k11 = fa[euler::alpha] - f0[euler::alpha], k12 = fb[euler::alpha] - f0[euler::alpha];
+    const T k21 = fa[euler::beta] - f0[euler::beta], k22 = fb[euler::beta] - f0[euler::beta];
+    // (I - K) x = f0
+    const T a11 = 1.0 - k11, a12 = -k12, a21 = -k21, a22 = 1.0 - k22;
+    const T det = a11 * a22 - a12 * a21;
+    const T ad = (f0[euler::alpha] * a22 - a12 * f0[euler::beta]) / det;
+    const T bd = (a11 * f0[euler::beta] - a21 * f0[euler::alpha]) / det;
+    return detail::euler_rhs_given(m, s, u, ad, bd, loads_out);
+}
+
+namespace detail {
+
+template <class T>
+QuatState<T> quaternion_rhs_given(const FlightModel& m, const QuatState<T>& s, const Controls<T>& u,
+                                  const T& alpha_dot, const T& beta_dot, Loads<T>* loads_out) {
+    const T q0 = s[quat::q0], q1 = s[quat::q1], q2 = s[quat::q2], q3 = s[quat::q3];
+    const Vec3<T> v_body(s[quat::u], s[quat::v], s[quat::w]);
+    const Vec3<T> w(s[quat::p], s[quat::q], s[quat::r]);
+    const T h = -s[quat::z];
+    Loads<T> L = compute_loads(m, h, v_body, w, u, alpha_dot, beta_dot);
+    // C_earth_from_body of the unit quaternion (normalised here so drift does not scale vectors).
+    const T n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3;
+    const T c11 = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) / n2, c12 = 2.0 * (q1 * q2 - q0 * q3) / n2,
+            c13 = 2.0 * (q1 * q3 + q0 * q2) / n2;
+    const T c21 = 2.0 * (q1 * q2 + q0 * q3) / n2, c22 = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) / n2,
+            c23 = 2.0 * (q2 * q3 - q0 * q1) / n2;
+    const T c31 = 2.0 * (q1 * q3 - q0 * q2) / n2, c32 = 2.0 * (q2 * q3 + q0 * q1) / n2,
+            c33 = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) / n2;
+    const double g = m.environment.gravity;
+    const Vec3<T> g_body(g * c31, g * c32, g * c33);  // C_body_from_earth * (0, 0, g)
+    Vec3<T> v_dot, w_dot;
+    rigid_body_accelerations(m, L, g_body, v_body, w, v_dot, w_dot);
+    QuatState<T> d;
+    d[quat::x] = c11 * v_body.x() + c12 * v_body.y() + c13 * v_body.z();
+    d[quat::y] = c21 * v_body.x() + c22 * v_body.y() + c23 * v_body.z();
+    d[quat::z] = c31 * v_body.x() + c32 * v_body.y() + c33 * v_body.z();
+    // q_dot = 1/2 q (x) (0, omega) + k (1 - |q|^2) q, the second term holding the norm at 1
+    // (Stevens, Lewis & Johnson 2015, eq. 1.8-15 with the correction term of sec. 3.6).
+    const double k = 1.0;
+    const T corr = k * (1.0 - n2);
+    d[quat::q0] = 0.5 * (-q1 * w.x() - q2 * w.y() - q3 * w.z()) + corr * q0;
+    d[quat::q1] = 0.5 * (q0 * w.x() + q2 * w.z() - q3 * w.y()) + corr * q1;
+    d[quat::q2] = 0.5 * (q0 * w.y() + q3 * w.x() - q1 * w.z()) + corr * q2;
+    d[quat::q3] = 0.5 * (q0 * w.z() + q1 * w.y() - q2 * w.x()) + corr * q3;
+    d[quat::u] = v_dot.x();
+    d[quat::v] = v_dot.y();
+    d[quat::w] = v_dot.z();
+    d[quat::p] = w_dot.x();
+    d[quat::q] = w_dot.y();
+    d[quat::r] = w_dot.z();
+    if (loads_out) *loads_out = L;
+    return d;
+}
+
+/// Angle rates implied by body accelerations.
+template <class T>
+void angle_rates(const Vec3<T>& v, const Vec3<T>& vd, T& alpha_dot, T& beta_dot) {
+    using std::sqrt;
+    const T uw2 = v.x() * v.x() + v.z() * v.z();
+    const T V2 = uw2 + v.y() * v.y();
+    alpha_dot = (v.x() * vd.z() - v.z() * vd.x()) / uw2;
+    const T Vd = (v.x() * vd.x() + v.y() * vd.y() + v.z() * vd.z()) / sqrt(V2);
+    beta_dot = (vd.y() * sqrt(V2) - v.y() * Vd) / (V2 * sqrt(uw2) / sqrt(V2));
+}
+
+}  // namespace detail
+
+/// Time derivative of the quaternion state (see euler_rhs for alpha-dot terms).
+template <class T>
+[[nodiscard]] QuatState<T> quaternion_rhs(const FlightModel& m, const QuatState<T>& s, const Controls<T>& u,
+                                          Loads<T>* loads_out = nullptr) {
+    const T zero = s[0] * 0.0;
+    if (!m.angle_rate_terms) return detail::quaternion_rhs_given(m, s, u, zero, zero, loads_out);
+    const Vec3<T> v(s[quat::u], s[quat::v], s[quat::w]);
+    auto rates = [&](const T& a, const T& b, T& ra, T& rb) {
+        const QuatState<T> d = detail::quaternion_rhs_given(m, s, u, a, b, static_cast<Loads<T>*>(nullptr));
+        detail::angle_rates(v, Vec3<T>(d[quat::u], d[quat::v], d[quat::w]), ra, rb);
+    };
+    T a0, b0, a1, b1, a2, b2;
+    rates(zero, zero, a0, b0);
+    rates(T(zero + 1.0), zero, a1, b1);
+    rates(zero, T(zero + 1.0), a2, b2);
+    const T a11 = 1.0 - (a1 - a0), a12 = -(a2 - a0), a21 = -(b1 - b0), a22 = 1.0 - (b2 - b0);
+    const T det = a11 * a22 - a12 * a21;
+    const T ad = (a0 * a22 - a12 * b0) / det;
+    const T bd = (a11 * b0 - a21 * a0) / det;
+    return detail::quaternion_rhs_given(m, s, u, ad, bd, loads_out);
+}
+
+/// Quaternion (q0, q1, q2, q3) of 3-2-1 Euler angles (body-to-earth rotation).
+[[nodiscard]] Eigen::Vector4d quaternion_from_euler(double phi, double theta, double psi);
+/// 3-2-1 Euler angles (phi, theta, psi) of a quaternion; psi in (-pi, pi].
+[[nodiscard]] Eigen::Vector3d euler_from_quaternion(const Eigen::Vector4d& q);
+/// Convert between the two state forms.
+[[nodiscard]] QuatState<double> to_quaternion_state(const EulerState<double>& s);
+[[nodiscard]] EulerState<double> to_euler_state(const QuatState<double>& s);
+
+/// Derived outputs at a state, for trajectories and reports.
+struct FlightOutputs {
+    double altitude = 0.0;  ///< [m]
+    double mach = 0.0;
+    double dynamic_pressure = 0.0;  ///< [Pa]
+    double nz = 0.0;  ///< load factor: -(aero + thrust z force) / (m g), 1 in level flight
+    double ny = 0.0;
+    double thrust = 0.0;  ///< [N]
+    double CL = 0.0, CD = 0.0, CY = 0.0, Cl = 0.0, Cm = 0.0, Cn = 0.0;  ///< wind forces, body moments (MRP)
+    double flight_path_angle = 0.0;  ///< gamma [rad]
+};
+[[nodiscard]] FlightOutputs outputs(const FlightModel& m, const Loads<double>& loads, const EulerState<double>& s);
+
+}  // namespace manta::flightdyn

@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# End-to-end checks of the manta CLI. Usage: cli_test.sh MANTA_BINARY REPO_ROOT WORK_DIR
+# Prints "N passed, N failed" and exits non-zero on any failure.
+set -u
+manta=$1
+root=$2
+work=$3
+rm -rf "$work"; mkdir -p "$work"
+pass=0; fail=0
+ranger=$root/examples/ranger2000/aircraft.yaml
+
+check() {  # check NAME EXPECTED_EXIT COMMAND...   (stdout+stderr to $work/out.txt)
+    local name=$1 expected=$2; shift 2
+    "$@" >"$work/out.txt" 2>"$work/err.txt"
+    local code=$?
+    if [ "$code" -eq "$expected" ]; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1))
+        echo "FAIL: $name: exit $code, expected $expected"
+        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | head -20
+    fi
+}
+contains() {  # contains NAME FILE PATTERN
+    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
+}
+json_ok() {  # json_ok NAME  (stdout of the last check must be one JSON object)
+    if python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert isinstance(d, dict)' "$work/out.txt" 2>/dev/null \
+       || { command -v python3 >/dev/null || grep -q '^{' "$work/out.txt"; }; then
+        pass=$((pass + 1))
+    else
+        fail=$((fail + 1)); echo "FAIL: $1: stdout is not one JSON object"; head -5 "$work/out.txt"
+    fi
+}
+
+# --help and --version
+check "manta --help" 0 "$manta" --help
+contains "help lists subcommands" "$work/out.txt" "atmosphere"
+check "manta --version" 0 "$manta" --version
+contains "version text" "$work/out.txt" "manta [0-9]+\.[0-9]+\.[0-9]+"
+for sub in atmosphere "config check" trim modes simulate demo; do
+    # shellcheck disable=SC2086
+    check "manta $sub --help" 0 "$manta" $sub --help
+done
+check "no subcommand is bad input" 2 "$manta"
+check "unknown subcommand" 2 "$manta" fly
+check "unknown option" 2 "$manta" atmosphere --altitude 1000 --colour red
+
+# atmosphere
+check "atmosphere json" 0 "$manta" atmosphere --altitude 5000 --json
+json_ok "atmosphere json"
+contains "atmosphere T(5 km)" "$work/out.txt" '"temperature": 255\.6'
+check "atmosphere text" 0 "$manta" atmosphere --altitude 0
+contains "atmosphere p0" "$work/out.txt" "101325"
+check "atmosphere out of range" 2 "$manta" atmosphere --altitude 100000
+contains "range message" "$work/err.txt" "outside the US Standard Atmosphere 1976 range"
+check "atmosphere non-number" 2 "$manta" atmosphere --altitude high
+
+# config check
+check "config check ranger" 0 "$manta" config check "$ranger" --json
+json_ok "config check json"
+printf 'schema_version: 1\nname: X\nrefrence: {}\n' > "$work/bad.yaml"
+check "config check bad file" 2 "$manta" config check "$work/bad.yaml"
+contains "bad key named with line" "$work/err.txt" "bad.yaml:3.*refrence"
+check "config check missing file" 2 "$manta" config check "$work/none.yaml"
+contains "missing file named" "$work/err.txt" "none.yaml"
+
+# trim and modes
+check "trim level" 0 "$manta" trim --aircraft "$ranger" --speed 150 --altitude 3000 --json
+json_ok "trim json"
+contains "trim has alpha" "$work/out.txt" '"alpha"'
+check "trim turn" 0 "$manta" trim --aircraft "$ranger" --speed 150 --altitude 3000 --turn-rate-deg-s 10 --json
+check "trim climb" 0 "$manta" trim --aircraft "$ranger" --speed 150 --altitude 3000 --climb-angle-deg 5
+check "trim climb and turn exclusive" 2 "$manta" trim --aircraft "$ranger" --speed 150 --altitude 3000 --climb-angle-deg 5 --turn-rate-deg-s 3
+check "trim impossible (too slow)" 1 "$manta" trim --aircraft "$ranger" --speed 20 --altitude 3000
+check "trim negative speed" 2 "$manta" trim --aircraft "$ranger" --speed -5 --altitude 3000
+check "modes" 0 "$manta" modes --aircraft "$ranger" --speed 150 --altitude 3000 --json
+json_ok "modes json"
+contains "modes short period" "$work/out.txt" "short"
+
+# simulate
+printf 't,elevator_deg\n0,0\n1,-2\n2,2\n3,0\n' > "$work/inputs.csv"
+check "simulate" 0 "$manta" simulate --aircraft "$ranger" --inputs "$work/inputs.csv" --duration 5 --out "$work/traj.csv" --json
+json_ok "simulate json"
+contains "trajectory header" "$work/traj.csv" "^t,x,y,z,phi,theta,psi,V,alpha,beta,p,q,r"
+printf 't,elevator_deg\n0,0\n1,-2\n1,2\n' > "$work/bad_inputs.csv"
+check "simulate duplicated time" 2 "$manta" simulate --aircraft "$ranger" --inputs "$work/bad_inputs.csv" --duration 5 --out "$work/t2.csv"
+contains "duplicated time names line" "$work/err.txt" "bad_inputs.csv:4"
+printf 't,elevator_deg\n0,0\n1,nan\n' > "$work/nan_inputs.csv"
+check "simulate NaN input" 2 "$manta" simulate --aircraft "$ranger" --inputs "$work/nan_inputs.csv" --duration 5 --out "$work/t3.csv"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
