@@ -22,7 +22,7 @@
 /// `evaluate` is a template so it runs with automatic-differentiation scalars: the cell is chosen
 /// on the plain value, the weights are computed in the scalar type, so derivatives follow the cell.
 ///
-/// Native file format: docs/formats.md#aero-database (YAML, exact round trip).
+/// Native file format: docs/aero-database.md (YAML, exact round trip).
 
 #include <cstdint>
 #include <filesystem>
@@ -75,6 +75,8 @@ struct OutOfRangeEntry {
     std::uint64_t above = 0;  ///< queries over the last breakpoint
     double lowest = 0.0;      ///< most extreme query values seen (valid when below/above > 0)
     double highest = 0.0;
+    double table_min = 0.0;   ///< first breakpoint of the axis (the table's range)
+    double table_max = 0.0;   ///< last breakpoint of the axis
 };
 
 struct OutOfRangeReport {
