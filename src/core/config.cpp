@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -46,6 +47,29 @@ bool looks_like_number_with_unit(const std::string& s) {
     return i < s.size() && std::isalpha(static_cast<unsigned char>(s[i]));
 }
 
+// yaml-cpp keeps both entries of a repeated mapping key and look-ups see only the first, so a
+// repeated key would silently lose a value: reject it once, when the document is parsed.
+void reject_duplicate_keys(const YAML::Node& n, const std::string& source, const std::string& path) {
+    if (n.IsMap()) {
+        std::vector<std::pair<std::string, int>> seen;
+        for (const auto& kv : n) {
+            const std::string key = kv.first.Scalar();
+            const int line = mark_line(kv.first);
+            for (const auto& [k, first_line] : seen) {
+                if (k == key) {
+                    throw ConfigError(fmt::format("{}:{}: key '{}' appears twice in one mapping (first at line {}); "
+                                                  "expected each key once",
+                                                  source, line, join_path(path, key), first_line));
+                }
+            }
+            seen.emplace_back(key, line);
+            reject_duplicate_keys(kv.second, source, join_path(path, key));
+        }
+    } else if (n.IsSequence()) {
+        for (std::size_t i = 0; i < n.size(); ++i) reject_duplicate_keys(n[i], source, fmt::format("{}[{}]", path, i));
+    }
+}
+
 // Unit suffixes users put on keys; MANTA reads SI (and _deg for angles) only.
 constexpr std::array<std::string_view, 14> foreign_unit_suffixes = {
     "_ft", "_in", "_kt", "_kts", "_lb", "_lbf", "_lbs", "_slug", "_mph", "_km", "_kmh", "_rad", "_percent", "_nm"};
@@ -81,6 +105,10 @@ ConfigNode::ConfigNode() : impl_(std::make_shared<Impl>()) {}
 ConfigNode::ConfigNode(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
 
 ConfigNode ConfigNode::parse_file(const std::filesystem::path& file) {
+    // An ifstream opens a directory on Linux and reads nothing: say what is wrong instead.
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw IoError(fmt::format("{}: is a directory; expected a YAML file", file.string()));
     std::ifstream in(file);
     if (!in) throw IoError(fmt::format("{}: cannot open file for reading", file.string()));
     std::stringstream ss;
@@ -96,6 +124,7 @@ ConfigNode ConfigNode::parse_string(std::string_view text, std::string source) {
     } catch (const YAML::Exception& e) {
         throw ConfigError(fmt::format("{}:{}: YAML syntax error: {}", impl->source, e.mark.line + 1, e.msg));
     }
+    reject_duplicate_keys(impl->node, impl->source, "");
     impl->line = impl->node.IsDefined() && !impl->node.IsNull() ? mark_line(impl->node) : 1;
     return ConfigNode(std::move(impl));
 }
@@ -204,6 +233,8 @@ double ConfigNode::to_double(const NumberSpec& spec) const {
 long ConfigNode::to_integer(const NumberSpec& spec) const {
     const double v = to_double(spec);
     if (std::floor(v) != v) fail("is not an integer", "an integer " + spec.describe().substr(2));
+    // Beyond 2^53 a double no longer holds every integer, and a cast past LONG_MAX is undefined.
+    if (std::abs(v) > 9007199254740992.0) fail("is too large", "an integer " + spec.describe().substr(2));
     return static_cast<long>(v);
 }
 
@@ -250,11 +281,33 @@ bool ConfigMap::has(std::string_view key) {
     return node_.has(key);
 }
 
+namespace {
+// " (found 'aera' at line 12: a misspelling?)" when the map holds a key that was never asked
+// for and is close to the missing `key`; else empty.
+std::string misspelling_hint(const ConfigNode& map, const std::vector<std::string>& known, std::string_view key) {
+    std::vector<std::string> unknown;
+    for (const auto& k : map.map_keys())
+        if (std::find(known.begin(), known.end(), k) == known.end()) unknown.push_back(k);
+    // The key with a unit suffix ("ceiling_ft" for "ceiling"): MANTA reads SI.
+    for (const auto& k : unknown) {
+        if (k.size() > key.size() + 1 && k.starts_with(key) && k[key.size()] == '_') {
+            return fmt::format(" (found '{}' at line {}: MANTA reads '{}' in SI units{})", k, map.key_line(k), key,
+                               std::find(known.begin(), known.end(), std::string(key) + "_deg") != known.end()
+                                   ? fmt::format(" or '{}_deg' in degrees", key)
+                                   : "");
+        }
+    }
+    const std::string guess = closest_match(key, unknown);
+    if (guess.empty()) return {};
+    return fmt::format(" (found '{}' at line {}: a misspelling?)", guess, map.key_line(guess));
+}
+}  // namespace
+
 ConfigNode ConfigMap::required(std::string_view key) {
     remember(key);
     if (!node_.has(key)) {
-        throw ConfigError(fmt::format("{}: missing required key '{}'", node_.where(),
-                                      node_.key_path().empty() ? std::string(key) : join_path(node_.key_path(), key)));
+        throw ConfigError(fmt::format("{}: missing required key '{}'{}", node_.where(), join_path(node_.key_path(), key),
+                                      misspelling_hint(node_, known_, key)));
     }
     return node_.child(key);
 }
@@ -319,8 +372,8 @@ double ConfigMap::angle(std::string_view key, const NumberSpec& spec) {
                                   fmt::format("either '{}' (radians) or '{}' (degrees), not both", key, deg_key));
     }
     if (!rad && !deg) {
-        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees)", node_.where(),
-                                      join_path(node_.key_path(), key), deg_key));
+        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees){}", node_.where(),
+                                      join_path(node_.key_path(), key), deg_key, misspelling_hint(node_, known_, deg_key)));
     }
     if (deg) {
         const ConfigNode n = node_.child(deg_key);
@@ -352,16 +405,25 @@ std::array<double, 2> ConfigMap::angle_range(std::string_view key, const NumberS
     remember(key);
     remember(deg_key);
     const bool deg = node_.has(deg_key);
+    if (deg && node_.has(key)) {
+        node_.child(deg_key).fail(fmt::format("duplicates '{}'", key),
+                                  fmt::format("either '{}' (radians) or '{}' (degrees), not both", key, deg_key));
+    }
     if (!deg && !node_.has(key)) {
-        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees)", node_.where(),
-                                      join_path(node_.key_path(), key), deg_key));
+        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees){}", node_.where(),
+                                      join_path(node_.key_path(), key), deg_key, misspelling_hint(node_, known_, deg_key)));
     }
     const ConfigNode n = node_.child(deg ? deg_key : std::string(key));
     const NumberSpec s = deg ? to_degrees(spec) : NumberSpec{spec.min, spec.max, spec.min_exclusive, spec.max_exclusive, "rad"};
-    auto v = n.to_doubles(2, s);
+    // Read without bounds first, so a radian value that looks like degrees is reported as such
+    // rather than as merely out of range.
+    auto v = n.to_doubles(2, widened(s, s.unit));
     if (!deg && (std::abs(v[0]) > 2 * std::numbers::pi || std::abs(v[1]) > 2 * std::numbers::pi))
-        n.fail("is in radians but looks like degrees", fmt::format("radians, or write '{}' for degrees", deg_key));
-    if (v[0] > v[1]) n.fail("has its lower bound above its upper bound", "[lower, upper]");
+        n.fail("is in radians but looks like degrees",
+               fmt::format("{} (write it as '{}' to give degrees)", s.describe(), deg_key));
+    for (std::size_t i = 0; i < 2; ++i)
+        if (!s.accepts(v[i])) n.element(i).fail("is out of range", s.describe());
+    if (v[0] > v[1]) n.fail("has its lower bound above its upper bound", "[lower, upper] with lower <= upper");
     const double f = deg ? std::numbers::pi / 180.0 : 1.0;
     return {v[0] * f, v[1] * f};
 }

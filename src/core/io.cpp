@@ -35,6 +35,10 @@ void write_file_atomic(const std::filesystem::path& file, std::string_view conte
 }
 
 std::string read_file(const std::filesystem::path& file) {
+    // An ifstream opens a directory on Linux and reads nothing: say what is wrong instead.
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw IoError(fmt::format("{}: is a directory; expected a file", file.string()));
     std::ifstream in(file, std::ios::binary);
     if (!in) throw IoError(fmt::format("{}: cannot open file for reading", file.string()));
     std::stringstream ss;
@@ -124,9 +128,11 @@ CsvTable parse_csv(std::string_view text, std::string source) {
         std::vector<double> row(fields.size());
         for (std::size_t i = 0; i < fields.size(); ++i) {
             const std::string_view f = fields[i];
+            // from_chars rejects an explicit leading '+', which other tools write ("+1.5e+00").
+            const std::string_view digits = f.size() > 1 && f.front() == '+' && f[1] != '-' && f[1] != '+' ? f.substr(1) : f;
             double v = 0.0;
-            const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
-            if (f.empty() || r.ec != std::errc() || r.ptr != f.data() + f.size()) {
+            const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+            if (f.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size()) {
                 throw InputError(fmt::format("{}:{}: column '{}' value '{}' is not a number", t.source, line_no,
                                              t.columns[i], f));
             }
