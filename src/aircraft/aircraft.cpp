@@ -1,5 +1,7 @@
 #include "manta/aircraft/aircraft.hpp"
 
+#include "manta/flightdyn/eom.hpp"
+
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 
@@ -371,7 +373,7 @@ flightdyn::EngineModel parse_engine(ConfigMap& e, const geometry::AircraftGeomet
         }
         for (std::size_t i = 0; i < rows.size(); ++i) {
             const auto row =
-                rows.element(i).to_doubles(eng.throttle.size(), NumberSpec::non_negative("N"));
+                rows.element(i).to_doubles(eng.throttle.size(), NumberSpec::any("N"));
             eng.thrust.insert(eng.thrust.end(), row.begin(), row.end());
         }
     }
@@ -636,6 +638,7 @@ flightdyn::FlightModel AircraftDefinition::flight_model(std::string_view mass_ca
     m.aero = aero;
     m.limits = limits;
     m.environment = environment;
+    flightdyn::finalize(m);  // derived flags (alpha-dot terms) and the model checks
     return m;
 }
 
