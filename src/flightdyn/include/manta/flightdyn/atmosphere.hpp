@@ -23,14 +23,19 @@ struct AtmosphereState {
     T geopotential_altitude{0.0};  ///< [m']
 };
 
-namespace us1976 {
+namespace us1976_constants {
 inline constexpr double earth_radius = 6356766.0;    ///< r0 [m], for geopotential altitude
 inline constexpr double g0 = 9.80665;                ///< [m/s^2]
-inline constexpr double gas_constant = 287.0528742;  ///< R* / M0 [J/(kg K)] = 8314.32 / 28.9644
+inline constexpr double universal_gas_constant = 8314.32;  ///< R* [J/(kmol K)] (the 1976 value)
+inline constexpr double molar_mass = 28.9644;              ///< M0 [kg/kmol], sea-level mean molecular weight
+inline constexpr double gas_constant = universal_gas_constant / molar_mass;  ///< R* / M0 = 287.05312 J/(kg K)
 inline constexpr double gamma = 1.4;
 inline constexpr double sutherland_beta = 1.458e-6;  ///< [kg/(s m K^1/2)]
 inline constexpr double sutherland_s = 110.4;        ///< [K]
 /// Layer bases: geopotential altitude [m'], temperature [K], lapse rate [K/m'], pressure [Pa].
+/// The base pressures are each layer's formula evaluated at its top in double precision (so the
+/// profile is continuous to rounding); printed in the standard as 22632.06, 5474.889, 868.0187,
+/// 110.9063, 66.93887 and 3.956420 Pa.
 struct Layer {
     double h_base;
     double t_base;
@@ -39,27 +44,27 @@ struct Layer {
 };
 inline constexpr std::array<Layer, 7> layers = {{
     {0.0, 288.15, -0.0065, 101325.0},
-    {11000.0, 216.65, 0.0, 22632.0559},
-    {20000.0, 216.65, 0.0010, 5474.88867},
-    {32000.0, 228.65, 0.0028, 868.018685},
-    {47000.0, 270.65, 0.0, 110.906306},
-    {51000.0, 270.65, -0.0028, 66.9388731},
-    {71000.0, 214.65, -0.0020, 3.95642043},
+    {11000.0, 216.65, 0.0, 22632.06397346291},
+    {20000.0, 216.65, 0.0010, 5474.888669677774},
+    {32000.0, 228.65, 0.0028, 868.0186847552278},
+    {47000.0, 270.65, 0.0, 110.9063055549659},
+    {51000.0, 270.65, -0.0028, 66.93887311868727},
+    {71000.0, 214.65, -0.0020, 3.956420428040725},
 }};
 inline constexpr double h_top = 84852.0;     ///< top of the model [m']
 inline constexpr double h_bottom = -5000.0;  ///< lowest altitude accepted [m']
-}  // namespace us1976
+}  // namespace us1976_constants
 
 /// Geopotential altitude [m'] from geometric altitude [m].
 template <class T>
 [[nodiscard]] T geopotential_from_geometric(const T& z) {
-    return us1976::earth_radius * z / (us1976::earth_radius + z);
+    return us1976_constants::earth_radius * z / (us1976_constants::earth_radius + z);
 }
 
 /// Geometric altitude [m] from geopotential altitude [m'].
 template <class T>
 [[nodiscard]] T geometric_from_geopotential(const T& h) {
-    return us1976::earth_radius * h / (us1976::earth_radius - h);
+    return us1976_constants::earth_radius * h / (us1976_constants::earth_radius - h);
 }
 
 /// Atmosphere at geopotential altitude `h` [m'], -5 km <= h <= 84.852 km (InputError outside).
@@ -69,14 +74,14 @@ template <class T>
     using std::pow;
     using std::sqrt;
     const double hv = core::value_of(h);
-    if (!(hv >= us1976::h_bottom && hv <= us1976::h_top)) {
+    if (!(hv >= us1976_constants::h_bottom && hv <= us1976_constants::h_top)) {
         throw InputError("atmosphere: geopotential altitude " + std::to_string(hv) +
                          " m is outside the US Standard Atmosphere 1976 range [-5000, 84852] m");
     }
     std::size_t i = 0;
-    while (i + 1 < us1976::layers.size() && hv >= us1976::layers[i + 1].h_base) ++i;
-    const auto& L = us1976::layers[i];
-    constexpr double gmr = us1976::g0 / us1976::gas_constant;  // g0 M0 / R*
+    while (i + 1 < us1976_constants::layers.size() && hv >= us1976_constants::layers[i + 1].h_base) ++i;
+    const auto& L = us1976_constants::layers[i];
+    constexpr double gmr = us1976_constants::g0 / us1976_constants::gas_constant;  // g0 M0 / R*
     AtmosphereState<T> a;
     a.geopotential_altitude = h;
     const T dh = h - L.h_base;
@@ -87,10 +92,10 @@ template <class T>
         a.temperature = L.t_base + L.lapse * dh;
         a.pressure = L.p_base * pow(T(a.temperature / L.t_base), -gmr / L.lapse);
     }
-    a.density = a.pressure / (us1976::gas_constant * a.temperature);
-    a.speed_of_sound = sqrt(T(us1976::gamma * us1976::gas_constant * a.temperature));
+    a.density = a.pressure / (us1976_constants::gas_constant * a.temperature);
+    a.speed_of_sound = sqrt(T(us1976_constants::gamma * us1976_constants::gas_constant * a.temperature));
     a.dynamic_viscosity =
-        us1976::sutherland_beta * a.temperature * sqrt(a.temperature) / (a.temperature + us1976::sutherland_s);
+        us1976_constants::sutherland_beta * a.temperature * sqrt(a.temperature) / (a.temperature + us1976_constants::sutherland_s);
     return a;
 }
 

@@ -11,6 +11,7 @@
 /// Thrust acts along the body x axis rotated by `thrust_angle` (nose-up positive) through
 /// `position` (geometry axes); the paper sets propulsive moments to zero (position at the CG).
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>

@@ -11,6 +11,7 @@
 /// Everything is templated on the scalar so the same code runs with automatic differentiation.
 
 #include <Eigen/Core>
+#include <Eigen/LU>  // Matrix3d::inverse()
 #include <cmath>
 
 #include "manta/aero/database.hpp"
@@ -73,65 +74,32 @@ T zero_like(const T& x) {
 }
 }  // namespace detail
 
-/// Aerodynamic and propulsive loads at altitude `h` [m] for air-relative body velocity
-/// `v_body` [m/s], body rates `omega_body` [rad/s], controls `u`, and angle rates alpha_dot,
-/// beta_dot [rad/s] (used only by tables with alpha-dot/beta-dot columns).
+namespace detail {
+
+/// Air data, atmosphere and thrust at a state: the loads without their aerodynamic part.
+/// `airspeed`, `alpha`, `beta` are those of the body velocity (|v|, atan2(w, u), asin(v/|v|)).
 template <class T>
-[[nodiscard]] Loads<T> compute_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body,
-                                     const Vec3<T>& omega_body, const Controls<T>& u,
-                                     const T& alpha_dot, const T& beta_dot) {
-    using std::asin;
-    using std::atan2;
-    using std::sqrt;
+[[nodiscard]] Loads<T> propulsive_loads(const FlightModel& m, const T& h, const T& airspeed, const T& alpha,
+                                        const T& beta, const Controls<T>& u) {
     Loads<T> L;
     L.atmosphere = us1976(h);
-    const T V2 = v_body.squaredNorm();
-    L.airspeed = sqrt(V2);
-    const T zero = detail::zero_like(h);
-    const bool moving = core::value_of(L.airspeed) > 1e-9;
-    L.alpha = moving ? T(atan2(v_body.z(), v_body.x())) : zero;
-    L.beta = moving ? T(asin(T(v_body.y() / L.airspeed))) : zero;
+    const T zero = zero_like(h);
+    const bool moving = core::value_of(airspeed) > 1e-9;
+    L.airspeed = airspeed;
+    L.alpha = moving ? alpha : zero;
+    L.beta = moving ? beta : zero;
     L.mach = L.airspeed / L.atmosphere.speed_of_sound;
-    L.dynamic_pressure = 0.5 * L.atmosphere.density * V2;
-
-    const double S = m.reference.area, b = m.reference.span, c = m.reference.chord;
-    L.force_body.setConstant(zero);
-    L.moment_body.setConstant(zero);
-    if (m.aero && moving) {
-        aero::AeroQuery<T> q;
-        q.alpha = L.alpha;
-        q.beta = L.beta;
-        q.mach = L.mach;
-        const T inv2V = 0.5 / L.airspeed;
-        q.p_hat = omega_body.x() * b * inv2V;
-        q.q_hat = omega_body.y() * c * inv2V;
-        q.r_hat = omega_body.z() * b * inv2V;
-        q.alpha_dot_hat = alpha_dot * c * inv2V;
-        q.beta_dot_hat = beta_dot * b * inv2V;
-        q.elevator = u.elevator;
-        q.aileron = u.aileron;
-        q.rudder = u.rudder;
-        L.coefficients = m.aero->evaluate(q, m.interpolation);
-        const T qS = L.dynamic_pressure * S;
-        L.force_body << qS * L.coefficients.CX, qS * L.coefficients.CY, qS * L.coefficients.CZ;
-        // Moment about the reference point, then transferred to the CG: M_cg = M_ref + r x F.
-        const Eigen::Vector3d r = body_from_geom(m.moment_reference_geom - m.mass.cg_geom);
-        const Vec3<T>& F = L.force_body;
-        L.moment_body << qS * b * L.coefficients.Cl + (r.y() * F.z() - r.z() * F.y()),
-            qS * c * L.coefficients.Cm + (r.z() * F.x() - r.x() * F.z()),
-            qS * b * L.coefficients.Cn + (r.x() * F.y() - r.y() * F.x());
-    }
+    L.dynamic_pressure = 0.5 * L.atmosphere.density * (airspeed * airspeed);
     // Thrust along the thrust line; a moment only if the engine position is off the CG.
     const T sigma = L.atmosphere.density / 1.225;
     L.thrust = m.engine.thrust_at(h, L.mach, u.throttle, sigma);
-    using std::cos;
-    using std::sin;
     const double ce = std::cos(m.engine.thrust_angle), se = std::sin(m.engine.thrust_angle);
-    const Vec3<T> FT(L.thrust * ce, zero, -L.thrust * se);
-    L.force_body += FT;
+    L.force_body << L.thrust * ce, zero, -L.thrust * se;
+    L.moment_body.setConstant(zero);
     if (m.engine.has_position) {
         const Eigen::Vector3d r = body_from_geom(
             Eigen::Vector3d(m.engine.position[0], m.engine.position[1], m.engine.position[2]) - m.mass.cg_geom);
+        const Vec3<T>& FT = L.force_body;
         L.moment_body.x() += r.y() * FT.z() - r.z() * FT.y();
         L.moment_body.y() += r.z() * FT.x() - r.x() * FT.z();
         L.moment_body.z() += r.x() * FT.y() - r.y() * FT.x();
@@ -139,15 +107,89 @@ template <class T>
     return L;
 }
 
+/// Add the aerodynamic coefficients, force and moment (about the CG) at body rates `omega_body`,
+/// controls `u` and angle rates alpha_dot, beta_dot [rad/s] to loads whose air data are set.
+/// Nothing is added without an aero database or below 1e-9 m/s, where alpha and beta are undefined.
+template <class T>
+void add_aero_loads(const FlightModel& m, Loads<T>& L, const Vec3<T>& omega_body, const Controls<T>& u,
+                    const T& alpha_dot, const T& beta_dot) {
+    if (!m.aero || !(core::value_of(L.airspeed) > 1e-9)) return;
+    const double S = m.reference.area, b = m.reference.span, c = m.reference.chord;
+    aero::AeroQuery<T> q;
+    q.alpha = L.alpha;
+    q.beta = L.beta;
+    q.mach = L.mach;
+    const T inv2V = 0.5 / L.airspeed;
+    q.p_hat = omega_body.x() * b * inv2V;
+    q.q_hat = omega_body.y() * c * inv2V;
+    q.r_hat = omega_body.z() * b * inv2V;
+    q.alpha_dot_hat = alpha_dot * c * inv2V;
+    q.beta_dot_hat = beta_dot * b * inv2V;
+    q.elevator = u.elevator;
+    q.aileron = u.aileron;
+    q.rudder = u.rudder;
+    L.coefficients = m.aero->evaluate(q, m.interpolation);
+    const T qS = L.dynamic_pressure * S;
+    const Vec3<T> F(qS * L.coefficients.CX, qS * L.coefficients.CY, qS * L.coefficients.CZ);
+    // Moment about the reference point, then transferred to the CG: M_cg = M_ref + r x F.
+    const Eigen::Vector3d r = body_from_geom(m.moment_reference_geom - m.mass.cg_geom);
+    L.moment_body.x() += qS * b * L.coefficients.Cl + (r.y() * F.z() - r.z() * F.y());
+    L.moment_body.y() += qS * c * L.coefficients.Cm + (r.z() * F.x() - r.x() * F.z());
+    L.moment_body.z() += qS * b * L.coefficients.Cn + (r.x() * F.y() - r.y() * F.x());
+    L.force_body += F;
+}
+
+/// compute_loads with the air data of the body velocity already known (the Euler-angle form has
+/// them in its state, which saves an atan2 and an asin per evaluation).
+template <class T>
+[[nodiscard]] Loads<T> compute_loads_known(const FlightModel& m, const T& h, const T& airspeed, const T& alpha,
+                                           const T& beta, const Vec3<T>& omega_body, const Controls<T>& u,
+                                           const T& alpha_dot, const T& beta_dot) {
+    Loads<T> L = propulsive_loads(m, h, airspeed, alpha, beta, u);
+    add_aero_loads(m, L, omega_body, u, alpha_dot, beta_dot);
+    return L;
+}
+
+}  // namespace detail
+
+/// Aerodynamic and propulsive loads at altitude `h` [m] for air-relative body velocity
+/// `v_body` [m/s], body rates `omega_body` [rad/s], controls `u`, and angle rates alpha_dot,
+/// beta_dot [rad/s] (used only by tables with alpha-dot/beta-dot columns).
+template <class T>
+[[nodiscard]] Loads<T> compute_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body,
+                                     const Vec3<T>& omega_body, const Controls<T>& u, const T& alpha_dot,
+                                     const T& beta_dot) {
+    using std::asin;
+    using std::atan2;
+    using std::sqrt;
+    const T airspeed = sqrt(T(v_body.squaredNorm()));
+    const T zero = detail::zero_like(h);
+    const bool moving = core::value_of(airspeed) > 1e-9;
+    const T alpha = moving ? T(atan2(v_body.z(), v_body.x())) : zero;
+    const T beta = moving ? T(asin(T(v_body.y() / airspeed))) : zero;
+    return detail::compute_loads_known(m, h, airspeed, alpha, beta, omega_body, u, alpha_dot, beta_dot);
+}
+
+namespace detail {
+
+/// Body-axis acceleration dv/dt = F/m + g_body - omega x v.
+template <class T>
+[[nodiscard]] Vec3<T> velocity_rate(const FlightModel& m, const Vec3<T>& force_body, const Vec3<T>& gravity_body,
+                                    const Vec3<T>& v, const Vec3<T>& w) {
+    const double inv_m = 1.0 / m.mass.mass;
+    return Vec3<T>(force_body.x() * inv_m + gravity_body.x() - (w.y() * v.z() - w.z() * v.y()),
+                   force_body.y() * inv_m + gravity_body.y() - (w.z() * v.x() - w.x() * v.z()),
+                   force_body.z() * inv_m + gravity_body.z() - (w.x() * v.y() - w.y() * v.x()));
+}
+
+}  // namespace detail
+
 /// Body-axis accelerations from loads: v_dot = F/m + g_body - omega x v, and
 /// omega_dot = I^-1 (M - omega x (I omega + h_engine)).
 template <class T>
 void rigid_body_accelerations(const FlightModel& m, const Loads<T>& L, const Vec3<T>& gravity_body,
                               const Vec3<T>& v_body, const Vec3<T>& w, Vec3<T>& v_dot, Vec3<T>& w_dot) {
-    const double inv_m = 1.0 / m.mass.mass;
-    v_dot.x() = L.force_body.x() * inv_m + gravity_body.x() - (w.y() * v_body.z() - w.z() * v_body.y());
-    v_dot.y() = L.force_body.y() * inv_m + gravity_body.y() - (w.z() * v_body.x() - w.x() * v_body.z());
-    v_dot.z() = L.force_body.z() * inv_m + gravity_body.z() - (w.x() * v_body.y() - w.y() * v_body.x());
+    v_dot = detail::velocity_rate(m, L.force_body, gravity_body, v_body, w);
     const Eigen::Matrix3d& I = m.mass.inertia;
     const Eigen::Vector3d& he = m.engine_angular_momentum;
     Vec3<T> H;
@@ -165,13 +207,80 @@ void rigid_body_accelerations(const FlightModel& m, const Loads<T>& L, const Vec
 
 namespace detail {
 
-/// Euler-form derivative for given angle rates used in the aero model (alpha_dot, beta_dot).
+/// alpha_dot and beta_dot implied by the body velocity v and its rate vd:
+/// alpha_dot = (u wd - w ud) / (u^2 + w^2), beta_dot = (vd V - v V_dot) / (V^2 cos(beta)),
+/// V cos(beta) = sqrt(u^2 + w^2) (Stevens, Lewis & Johnson 2015, eq. 2.5-7).
 template <class T>
-EulerState<T> euler_rhs_given(const FlightModel& m, const EulerState<T>& s, const Controls<T>& u,
-                              const T& alpha_dot, const T& beta_dot, Loads<T>* loads_out) {
+void angle_rates(const Vec3<T>& v, const Vec3<T>& vd, T& alpha_dot, T& beta_dot) {
+    using std::sqrt;
+    const T uw2 = v.x() * v.x() + v.z() * v.z();
+    const T V2 = uw2 + v.y() * v.y();
+    const T V = sqrt(V2);
+    alpha_dot = (v.x() * vd.z() - v.z() * vd.x()) / uw2;
+    const T Vd = (v.x() * vd.x() + v.y() * vd.y() + v.z() * vd.z()) / V;
+    beta_dot = (vd.y() * V - v.y() * Vd) / (V * sqrt(uw2));
+}
+
+/// Loads at a state with the alpha-dot and beta-dot terms of the tables made consistent with the
+/// motion they cause. The loads are affine in (alpha_dot, beta_dot) (the dynamic table adds
+/// C_alphadot alpha_dot_hat + C_betadot beta_dot_hat), and so are the angle rates the resulting
+/// accelerations imply: three load evaluations, at (0, 0), (1, 0) and (0, 1) rad/s, give the 2x2
+/// linear system (I - K) [alpha_dot, beta_dot] = f0, and the loads at its solution are the same
+/// affine combination of the three. Skipped when the tables have no such terms, or when alpha and
+/// beta are undefined (V = 0 or u = w = 0).
+template <class T>
+[[nodiscard]] Loads<T> consistent_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body, const T& airspeed,
+                                        const T& alpha, const T& beta, const Vec3<T>& w, const Controls<T>& u,
+                                        const Vec3<T>& gravity_body) {
+    const T zero = zero_like(h);
+    // Atmosphere and thrust do not depend on the angle rates: once.
+    const Loads<T> base = propulsive_loads(m, h, airspeed, alpha, beta, u);
+    Loads<T> L = base;
+    add_aero_loads(m, L, w, u, zero, zero);
+    const double uw2 = core::value_of(v_body.x()) * core::value_of(v_body.x()) +
+                       core::value_of(v_body.z()) * core::value_of(v_body.z());
+    if (!m.angle_rate_terms || !m.aero || !(core::value_of(airspeed) > 1e-9) || !(uw2 > 1e-18)) return L;
+    const T one = zero + 1.0;
+    Loads<T> La = base, Lb = base;
+    add_aero_loads(m, La, w, u, one, zero);
+    add_aero_loads(m, Lb, w, u, zero, one);
+    T a0, b0, a1, b1, a2, b2;
+    angle_rates(v_body, velocity_rate(m, L.force_body, gravity_body, v_body, w), a0, b0);
+    angle_rates(v_body, velocity_rate(m, La.force_body, gravity_body, v_body, w), a1, b1);
+    angle_rates(v_body, velocity_rate(m, Lb.force_body, gravity_body, v_body, w), a2, b2);
+    // (I - K) x = f0 with K = [[a1 - a0, a2 - a0], [b1 - b0, b2 - b0]].
+    const T k11 = 1.0 - (a1 - a0), k12 = -(a2 - a0), k21 = -(b1 - b0), k22 = 1.0 - (b2 - b0);
+    const T det = k11 * k22 - k12 * k21;
+    const T ad = (a0 * k22 - k12 * b0) / det;
+    const T bd = (k11 * b0 - k21 * a0) / det;
+    auto mix = [&](const T& x0, const T& xa, const T& xb) { return T(x0 + ad * (xa - x0) + bd * (xb - x0)); };
+    for (int i = 0; i < 3; ++i) {
+        L.force_body[i] = mix(L.force_body[i], La.force_body[i], Lb.force_body[i]);
+        L.moment_body[i] = mix(L.moment_body[i], La.moment_body[i], Lb.moment_body[i]);
+    }
+    auto& C = L.coefficients;
+    C.CX = mix(C.CX, La.coefficients.CX, Lb.coefficients.CX);
+    C.CY = mix(C.CY, La.coefficients.CY, Lb.coefficients.CY);
+    C.CZ = mix(C.CZ, La.coefficients.CZ, Lb.coefficients.CZ);
+    C.Cl = mix(C.Cl, La.coefficients.Cl, Lb.coefficients.Cl);
+    C.Cm = mix(C.Cm, La.coefficients.Cm, Lb.coefficients.Cm);
+    C.Cn = mix(C.Cn, La.coefficients.Cn, Lb.coefficients.Cn);
+    return L;
+}
+
+}  // namespace detail
+
+/// Time derivative of the Euler-angle state. If the aero tables carry alpha-dot or beta-dot
+/// terms the implicit dependence is solved exactly (the loads are affine in them; see
+/// detail::consistent_loads).
+template <class T>
+[[nodiscard]] EulerState<T> euler_rhs(const FlightModel& m, const EulerState<T>& s, const Controls<T>& u,
+                                      Loads<T>* loads_out = nullptr) {
+    using std::asin;
+    using std::atan2;
     using std::cos;
     using std::sin;
-    using std::tan;
+    using std::sqrt;
     const T sphi = sin(s[euler::phi]), cphi = cos(s[euler::phi]);
     const T sth = sin(s[euler::theta]), cth = cos(s[euler::theta]);
     const T spsi = sin(s[euler::psi]), cpsi = cos(s[euler::psi]);
@@ -181,9 +290,17 @@ EulerState<T> euler_rhs_given(const FlightModel& m, const EulerState<T>& s, cons
     const Vec3<T> v_body(V * ca * cb, V * sb, V * sa * cb);
     const Vec3<T> w(s[euler::p], s[euler::q], s[euler::r]);
     const T h = -s[euler::z];
-    Loads<T> L = compute_loads(m, h, v_body, w, u, alpha_dot, beta_dot);
     const double g = m.environment.gravity;
     const Vec3<T> g_body(-g * sth, g * sphi * cth, g * cphi * cth);
+    // Air data of v_body: the state's own (V, alpha, beta) when they are the principal values,
+    // as atan2/asin would return them; otherwise (V < 0, |alpha| > pi, |beta| > pi/2) computed.
+    const double Vv = core::value_of(V), av = core::value_of(s[euler::alpha]), bv = core::value_of(s[euler::beta]);
+    const bool principal = Vv > 0.0 && std::abs(av) <= core::pi && std::abs(bv) < 0.5 * core::pi;
+    const T airspeed = principal ? V : T(sqrt(T(v_body.squaredNorm())));
+    const T alpha = principal ? s[euler::alpha] : T(atan2(v_body.z(), v_body.x()));
+    const T beta = principal || !(core::value_of(airspeed) > 0.0) ? s[euler::beta]
+                                                                  : T(asin(T(v_body.y() / airspeed)));
+    const Loads<T> L = detail::consistent_loads(m, h, v_body, airspeed, alpha, beta, w, u, g_body);
     Vec3<T> v_dot, w_dot;
     rigid_body_accelerations(m, L, g_body, v_body, w, v_dot, w_dot);
 
@@ -194,7 +311,7 @@ EulerState<T> euler_rhs_given(const FlightModel& m, const EulerState<T>& s, cons
     d[euler::beta] = (V * v_dot.y() - vv * d[euler::V]) / (V * V * cb);
     // Attitude kinematics (3-2-1 Euler angles).
     const T qs_rc = w.y() * sphi + w.z() * cphi;
-    d[euler::phi] = w.x() + tan(s[euler::theta]) * qs_rc;
+    d[euler::phi] = w.x() + sth * qs_rc / cth;
     d[euler::theta] = w.y() * cphi - w.z() * sphi;
     d[euler::psi] = qs_rc / cth;
     // Navigation: earth-axis velocity = C_earth_from_body * v_body.
@@ -208,49 +325,34 @@ EulerState<T> euler_rhs_given(const FlightModel& m, const EulerState<T>& s, cons
     return d;
 }
 
-}  // namespace detail
-
-/// Time derivative of the Euler-angle state. If the aero tables carry alpha-dot or beta-dot
-/// terms the implicit dependence is solved exactly (the derivative is affine in them).
+/// Time derivative of the quaternion state (see euler_rhs for alpha-dot terms).
 template <class T>
-[[nodiscard]] EulerState<T> euler_rhs(const FlightModel& m, const EulerState<T>& s, const Controls<T>& u,
-                                      Loads<T>* loads_out = nullptr) {
-    const T zero = s[0] * 0.0;
-    if (!m.angle_rate_terms) return detail::euler_rhs_given(m, s, u, zero, zero, loads_out);
-    // f(a, b) = f0 + K [a, b]; solve a = f_alpha(a, b), b = f_beta(a, b).
-    const EulerState<T> f0 = detail::euler_rhs_given(m, s, u, zero, zero, static_cast<Loads<T>*>(nullptr));
-    const EulerState<T> fa = detail::euler_rhs_given(m, s, u, T(zero + 1.0), zero, static_cast<Loads<T>*>(nullptr));
-    const EulerState<T> fb = detail::euler_rhs_given(m, s, u, zero, T(zero + 1.0), static_cast<Loads<T>*>(nullptr));
-    const T k11 = fa[euler::alpha] - f0[euler::alpha], k12 = fb[euler::alpha] - f0[euler::alpha];
-    const T k21 = fa[euler::beta] - f0[euler::beta], k22 = fb[euler::beta] - f0[euler::beta];
-    // (I - K) x = f0
-    const T a11 = 1.0 - k11, a12 = -k12, a21 = -k21, a22 = 1.0 - k22;
-    const T det = a11 * a22 - a12 * a21;
-    const T ad = (f0[euler::alpha] * a22 - a12 * f0[euler::beta]) / det;
-    const T bd = (a11 * f0[euler::beta] - a21 * f0[euler::alpha]) / det;
-    return detail::euler_rhs_given(m, s, u, ad, bd, loads_out);
-}
-
-namespace detail {
-
-template <class T>
-QuatState<T> quaternion_rhs_given(const FlightModel& m, const QuatState<T>& s, const Controls<T>& u,
-                                  const T& alpha_dot, const T& beta_dot, Loads<T>* loads_out) {
+[[nodiscard]] QuatState<T> quaternion_rhs(const FlightModel& m, const QuatState<T>& s, const Controls<T>& u,
+                                          Loads<T>* loads_out = nullptr) {
+    using std::asin;
+    using std::atan2;
+    using std::sqrt;
     const T q0 = s[quat::q0], q1 = s[quat::q1], q2 = s[quat::q2], q3 = s[quat::q3];
     const Vec3<T> v_body(s[quat::u], s[quat::v], s[quat::w]);
     const Vec3<T> w(s[quat::p], s[quat::q], s[quat::r]);
     const T h = -s[quat::z];
-    Loads<T> L = compute_loads(m, h, v_body, w, u, alpha_dot, beta_dot);
     // C_earth_from_body of the unit quaternion (normalised here so drift does not scale vectors).
     const T n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3;
-    const T c11 = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) / n2, c12 = 2.0 * (q1 * q2 - q0 * q3) / n2,
-            c13 = 2.0 * (q1 * q3 + q0 * q2) / n2;
-    const T c21 = 2.0 * (q1 * q2 + q0 * q3) / n2, c22 = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) / n2,
-            c23 = 2.0 * (q2 * q3 - q0 * q1) / n2;
-    const T c31 = 2.0 * (q1 * q3 - q0 * q2) / n2, c32 = 2.0 * (q2 * q3 + q0 * q1) / n2,
-            c33 = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) / n2;
+    const T inv_n2 = 1.0 / n2;
+    const T c11 = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * inv_n2, c12 = 2.0 * (q1 * q2 - q0 * q3) * inv_n2,
+            c13 = 2.0 * (q1 * q3 + q0 * q2) * inv_n2;
+    const T c21 = 2.0 * (q1 * q2 + q0 * q3) * inv_n2, c22 = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * inv_n2,
+            c23 = 2.0 * (q2 * q3 - q0 * q1) * inv_n2;
+    const T c31 = 2.0 * (q1 * q3 - q0 * q2) * inv_n2, c32 = 2.0 * (q2 * q3 + q0 * q1) * inv_n2,
+            c33 = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * inv_n2;
     const double g = m.environment.gravity;
     const Vec3<T> g_body(g * c31, g * c32, g * c33);  // C_body_from_earth * (0, 0, g)
+    const T airspeed = sqrt(T(v_body.squaredNorm()));
+    const T zero = detail::zero_like(h);
+    const bool moving = core::value_of(airspeed) > 1e-9;
+    const T alpha = moving ? T(atan2(v_body.z(), v_body.x())) : zero;
+    const T beta = moving ? T(asin(T(v_body.y() / airspeed))) : zero;
+    const Loads<T> L = detail::consistent_loads(m, h, v_body, airspeed, alpha, beta, w, u, g_body);
     Vec3<T> v_dot, w_dot;
     rigid_body_accelerations(m, L, g_body, v_body, w, v_dot, w_dot);
     QuatState<T> d;
@@ -273,41 +375,6 @@ QuatState<T> quaternion_rhs_given(const FlightModel& m, const QuatState<T>& s, c
     d[quat::r] = w_dot.z();
     if (loads_out) *loads_out = L;
     return d;
-}
-
-/// Angle rates implied by body accelerations.
-template <class T>
-void angle_rates(const Vec3<T>& v, const Vec3<T>& vd, T& alpha_dot, T& beta_dot) {
-    using std::sqrt;
-    const T uw2 = v.x() * v.x() + v.z() * v.z();
-    const T V2 = uw2 + v.y() * v.y();
-    alpha_dot = (v.x() * vd.z() - v.z() * vd.x()) / uw2;
-    const T Vd = (v.x() * vd.x() + v.y() * vd.y() + v.z() * vd.z()) / sqrt(V2);
-    beta_dot = (vd.y() * sqrt(V2) - v.y() * Vd) / (V2 * sqrt(uw2) / sqrt(V2));
-}
-
-}  // namespace detail
-
-/// Time derivative of the quaternion state (see euler_rhs for alpha-dot terms).
-template <class T>
-[[nodiscard]] QuatState<T> quaternion_rhs(const FlightModel& m, const QuatState<T>& s, const Controls<T>& u,
-                                          Loads<T>* loads_out = nullptr) {
-    const T zero = s[0] * 0.0;
-    if (!m.angle_rate_terms) return detail::quaternion_rhs_given(m, s, u, zero, zero, loads_out);
-    const Vec3<T> v(s[quat::u], s[quat::v], s[quat::w]);
-    auto rates = [&](const T& a, const T& b, T& ra, T& rb) {
-        const QuatState<T> d = detail::quaternion_rhs_given(m, s, u, a, b, static_cast<Loads<T>*>(nullptr));
-        detail::angle_rates(v, Vec3<T>(d[quat::u], d[quat::v], d[quat::w]), ra, rb);
-    };
-    T a0, b0, a1, b1, a2, b2;
-    rates(zero, zero, a0, b0);
-    rates(T(zero + 1.0), zero, a1, b1);
-    rates(zero, T(zero + 1.0), a2, b2);
-    const T a11 = 1.0 - (a1 - a0), a12 = -(a2 - a0), a21 = -(b1 - b0), a22 = 1.0 - (b2 - b0);
-    const T det = a11 * a22 - a12 * a21;
-    const T ad = (a0 * a22 - a12 * b0) / det;
-    const T bd = (a11 * b0 - a21 * a0) / det;
-    return detail::quaternion_rhs_given(m, s, u, ad, bd, loads_out);
 }
 
 /// Quaternion (q0, q1, q2, q3) of 3-2-1 Euler angles (body-to-earth rotation).
