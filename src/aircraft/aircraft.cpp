@@ -372,8 +372,7 @@ flightdyn::EngineModel parse_engine(ConfigMap& e, const geometry::AircraftGeomet
                             n_rows, eng.altitude.size(), eng.mach.size(), eng.throttle.size()));
         }
         for (std::size_t i = 0; i < rows.size(); ++i) {
-            const auto row =
-                rows.element(i).to_doubles(eng.throttle.size(), NumberSpec::any("N"));
+            const auto row = rows.element(i).to_doubles(eng.throttle.size(), NumberSpec::any("N"));
             eng.thrust.insert(eng.thrust.end(), row.begin(), row.end());
         }
     }

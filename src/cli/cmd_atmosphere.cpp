@@ -11,7 +11,8 @@ void add_atmosphere(CLI::App& app, Action& action) {
     auto altitude = std::make_shared<double>(0.0);
     auto geopotential = std::make_shared<bool>(false);
     auto json = std::make_shared<bool>(false);
-    cmd->add_option("--altitude", *altitude, "Altitude [m] (geometric unless --geopotential)")->required();
+    cmd->add_option("--altitude", *altitude, "Altitude [m] (geometric unless --geopotential)")
+        ->required();
     cmd->add_flag("--geopotential", *geopotential, "Read --altitude as geopotential altitude [m']");
     cmd->add_flag("--json", *json, "Print one JSON object (SI units)");
     cmd->callback([=, &action] {

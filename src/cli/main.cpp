@@ -13,15 +13,18 @@
 
 namespace manta::cli {
 
-void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
+void print_json(const nlohmann::json& j) {
+    std::cout << j.dump(2) << '\n';
+}
 
 }  // namespace manta::cli
 
 int main(int argc, char** argv) {
     using namespace manta;
-    CLI::App app{"MANTA: aircraft manoeuvres with aerodynamics from flow solutions.\n"
-                 "Run 'manta <command> --help' for the options of a command.",
-                 "manta"};
+    CLI::App app{
+        "MANTA: aircraft manoeuvres with aerodynamics from flow solutions.\n"
+        "Run 'manta <command> --help' for the options of a command.",
+        "manta"};
     app.set_version_flag("--version", "manta " + core::version());
     app.require_subcommand(1);
     bool debug = false;

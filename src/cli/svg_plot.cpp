@@ -25,23 +25,29 @@ std::string num(double v) {
 
 }  // namespace
 
-std::string svg_time_histories(const std::string& title, const std::string& x_label, const std::vector<double>& t,
-                               const std::vector<Panel>& panels, int columns) {
+std::string svg_time_histories(const std::string& title, const std::string& x_label,
+                               const std::vector<double>& t, const std::vector<Panel>& panels,
+                               int columns) {
     const int pw = 420, ph = 190, ml = 62, mr = 14, mt = 26, mb = 40;
     const int rows = static_cast<int>((panels.size() + columns - 1) / columns);
     const int W = columns * pw, H = rows * ph + 34;
     std::string s = fmt::format(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\" "
-        "font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-        "<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"14\" font-weight=\"bold\">{}</text>\n",
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} "
+        "{}\" "
+        "font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" "
+        "fill=\"white\"/>\n"
+        "<text x=\"{}\" y=\"20\" text-anchor=\"middle\" font-size=\"14\" "
+        "font-weight=\"bold\">{}</text>\n",
         W, H, W, H, W / 2, title);
     if (t.empty()) return s + "</svg>\n";
     const double t0 = t.front(), t1 = std::max(t.back(), t.front() + 1e-9);
     for (std::size_t k = 0; k < panels.size(); ++k) {
         const auto& p = panels[k];
-        const int ox = static_cast<int>(k % columns) * pw, oy = 34 + static_cast<int>(k / columns) * ph;
+        const int ox = static_cast<int>(k % columns) * pw,
+                  oy = 34 + static_cast<int>(k / columns) * ph;
         const int x0 = ox + ml, x1 = ox + pw - mr, y0 = oy + mt, y1 = oy + ph - mb;
-        double lo = *std::min_element(p.y.begin(), p.y.end()), hi = *std::max_element(p.y.begin(), p.y.end());
+        double lo = *std::min_element(p.y.begin(), p.y.end()),
+               hi = *std::max_element(p.y.begin(), p.y.end());
         if (hi - lo < 1e-9 * std::max(1.0, std::abs(hi))) {
             lo -= std::max(1e-3, 0.05 * std::abs(lo));
             hi += std::max(1e-3, 0.05 * std::abs(hi));
@@ -51,27 +57,34 @@ std::string svg_time_histories(const std::string& title, const std::string& x_la
         hi += pad;
         auto X = [&](double v) { return x0 + (v - t0) / (t1 - t0) * (x1 - x0); };
         auto Y = [&](double v) { return y1 - (v - lo) / (hi - lo) * (y1 - y0); };
-        s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", x0, y0,
-                         x1 - x0, y1 - y0);
+        s += fmt::format(
+            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n",
+            x0, y0, x1 - x0, y1 - y0);
         const double ys = nice_step(lo, hi, 4);
         for (double v = std::ceil(lo / ys) * ys; v <= hi; v += ys) {
-            s += fmt::format("<line x1=\"{}\" x2=\"{}\" y1=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
-                             "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n",
-                             x0, x1, Y(v), Y(v), x0 - 4, Y(v) + 4, num(v));
+            s += fmt::format(
+                "<line x1=\"{}\" x2=\"{}\" y1=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
+                "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n",
+                x0, x1, Y(v), Y(v), x0 - 4, Y(v) + 4, num(v));
         }
         const double xs = nice_step(t0, t1, 6);
         for (double v = std::ceil(t0 / xs) * xs; v <= t1 + 1e-9; v += xs) {
-            s += fmt::format("<line x1=\"{:.1f}\" x2=\"{:.1f}\" y1=\"{}\" y2=\"{}\" stroke=\"#eee\"/>"
-                             "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
-                             X(v), X(v), y0, y1, X(v), y1 + 14, num(v));
+            s += fmt::format(
+                "<line x1=\"{:.1f}\" x2=\"{:.1f}\" y1=\"{}\" y2=\"{}\" stroke=\"#eee\"/>"
+                "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+                X(v), X(v), y0, y1, X(v), y1 + 14, num(v));
         }
-        s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (x0 + x1) / 2, y1 + 30, x_label);
-        s += fmt::format("<text transform=\"translate({},{}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n", ox + 14,
-                         (y0 + y1) / 2, p.label);
-        s += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"", p.colour);
+        s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+                         (x0 + x1) / 2, y1 + 30, x_label);
+        s += fmt::format(
+            "<text transform=\"translate({},{}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
+            ox + 14, (y0 + y1) / 2, p.label);
+        s += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"",
+                         p.colour);
         const std::size_t n = std::min(t.size(), p.y.size());
         const std::size_t stride = std::max<std::size_t>(1, n / 800);
-        for (std::size_t i = 0; i < n; i += stride) s += fmt::format("{:.1f},{:.1f} ", X(t[i]), Y(p.y[i]));
+        for (std::size_t i = 0; i < n; i += stride)
+            s += fmt::format("{:.1f},{:.1f} ", X(t[i]), Y(p.y[i]));
         s += "\"/>\n";
     }
     return s + "</svg>\n";

@@ -17,7 +17,7 @@ struct Panel {
 
 /// SVG text of panels sharing the x axis `t` (label `x_label`), in a grid of `columns`.
 [[nodiscard]] std::string svg_time_histories(const std::string& title, const std::string& x_label,
-                                             const std::vector<double>& t, const std::vector<Panel>& panels,
-                                             int columns = 2);
+                                             const std::vector<double>& t,
+                                             const std::vector<Panel>& panels, int columns = 2);
 
 }  // namespace manta::cli

@@ -2,9 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -34,7 +34,9 @@ std::string join_path(const std::string& parent, std::string_view key) {
     return fmt::format("{}.{}", parent, key);
 }
 
-std::string fmt_num(double v) { return fmt::format("{:g}", v); }
+std::string fmt_num(double v) {
+    return fmt::format("{:g}", v);
+}
 
 // A scalar that looks like "15.5 m" or "10deg": a number followed by a unit word.
 bool looks_like_number_with_unit(const std::string& s) {
@@ -49,7 +51,8 @@ bool looks_like_number_with_unit(const std::string& s) {
 
 // yaml-cpp keeps both entries of a repeated mapping key and look-ups see only the first, so a
 // repeated key would silently lose a value: reject it once, when the document is parsed.
-void reject_duplicate_keys(const YAML::Node& n, const std::string& source, const std::string& path) {
+void reject_duplicate_keys(const YAML::Node& n, const std::string& source,
+                           const std::string& path) {
     if (n.IsMap()) {
         std::vector<std::pair<std::string, int>> seen;
         for (const auto& kv : n) {
@@ -57,22 +60,25 @@ void reject_duplicate_keys(const YAML::Node& n, const std::string& source, const
             const int line = mark_line(kv.first);
             for (const auto& [k, first_line] : seen) {
                 if (k == key) {
-                    throw ConfigError(fmt::format("{}:{}: key '{}' appears twice in one mapping (first at line {}); "
-                                                  "expected each key once",
-                                                  source, line, join_path(path, key), first_line));
+                    throw ConfigError(fmt::format(
+                        "{}:{}: key '{}' appears twice in one mapping (first at line {}); "
+                        "expected each key once",
+                        source, line, join_path(path, key), first_line));
                 }
             }
             seen.emplace_back(key, line);
             reject_duplicate_keys(kv.second, source, join_path(path, key));
         }
     } else if (n.IsSequence()) {
-        for (std::size_t i = 0; i < n.size(); ++i) reject_duplicate_keys(n[i], source, fmt::format("{}[{}]", path, i));
+        for (std::size_t i = 0; i < n.size(); ++i)
+            reject_duplicate_keys(n[i], source, fmt::format("{}[{}]", path, i));
     }
 }
 
 // Unit suffixes users put on keys; MANTA reads SI (and _deg for angles) only.
 constexpr std::array<std::string_view, 14> foreign_unit_suffixes = {
-    "_ft", "_in", "_kt", "_kts", "_lb", "_lbf", "_lbs", "_slug", "_mph", "_km", "_kmh", "_rad", "_percent", "_nm"};
+    "_ft",   "_in",  "_kt", "_kts", "_lb",  "_lbf",     "_lbs",
+    "_slug", "_mph", "_km", "_kmh", "_rad", "_percent", "_nm"};
 
 }  // namespace
 
@@ -122,16 +128,23 @@ ConfigNode ConfigNode::parse_string(std::string_view text, std::string source) {
     try {
         impl->node = YAML::Load(std::string(text));
     } catch (const YAML::Exception& e) {
-        throw ConfigError(fmt::format("{}:{}: YAML syntax error: {}", impl->source, e.mark.line + 1, e.msg));
+        throw ConfigError(
+            fmt::format("{}:{}: YAML syntax error: {}", impl->source, e.mark.line + 1, e.msg));
     }
     reject_duplicate_keys(impl->node, impl->source, "");
     impl->line = impl->node.IsDefined() && !impl->node.IsNull() ? mark_line(impl->node) : 1;
     return ConfigNode(std::move(impl));
 }
 
-const std::string& ConfigNode::source() const { return impl_->source; }
-const std::string& ConfigNode::key_path() const { return impl_->path; }
-int ConfigNode::line() const { return impl_->line; }
+const std::string& ConfigNode::source() const {
+    return impl_->source;
+}
+const std::string& ConfigNode::key_path() const {
+    return impl_->path;
+}
+int ConfigNode::line() const {
+    return impl_->line;
+}
 
 std::string ConfigNode::where() const {
     std::string s = impl_->source.empty() ? "<config>" : impl_->source;
@@ -149,12 +162,24 @@ std::string ConfigNode::value_text() const {
     return n.Scalar();
 }
 
-bool ConfigNode::is_defined() const { return impl_->node.IsDefined(); }
-bool ConfigNode::is_null() const { return impl_->node.IsDefined() && impl_->node.IsNull(); }
-bool ConfigNode::is_map() const { return impl_->node.IsMap(); }
-bool ConfigNode::is_sequence() const { return impl_->node.IsSequence(); }
-bool ConfigNode::is_scalar() const { return impl_->node.IsScalar(); }
-std::size_t ConfigNode::size() const { return impl_->node.size(); }
+bool ConfigNode::is_defined() const {
+    return impl_->node.IsDefined();
+}
+bool ConfigNode::is_null() const {
+    return impl_->node.IsDefined() && impl_->node.IsNull();
+}
+bool ConfigNode::is_map() const {
+    return impl_->node.IsMap();
+}
+bool ConfigNode::is_sequence() const {
+    return impl_->node.IsSequence();
+}
+bool ConfigNode::is_scalar() const {
+    return impl_->node.IsScalar();
+}
+std::size_t ConfigNode::size() const {
+    return impl_->node.size();
+}
 
 ConfigNode ConfigNode::element(std::size_t i) const {
     auto c = std::make_shared<Impl>();
@@ -204,7 +229,8 @@ int ConfigNode::key_line(std::string_view key) const {
 }
 
 void ConfigNode::fail(std::string_view problem, std::string_view expected) const {
-    throw ConfigError(fmt::format("{}: value '{}' {}; expected {}", where(), value_text(), problem, expected));
+    throw ConfigError(
+        fmt::format("{}: value '{}' {}; expected {}", where(), value_text(), problem, expected));
 }
 
 double ConfigNode::to_double(const NumberSpec& spec) const {
@@ -222,7 +248,8 @@ double ConfigNode::to_double(const NumberSpec& spec) const {
     if (used == 0 || used != s.size()) {
         if (looks_like_number_with_unit(s))
             fail("carries a unit in the value",
-                 fmt::format("{} written as a plain number (units are not read from values)", spec.describe()));
+                 fmt::format("{} written as a plain number (units are not read from values)",
+                             spec.describe()));
         fail("is not a number", spec.describe());
     }
     if (!std::isfinite(v)) fail("is not finite", spec.describe());
@@ -234,7 +261,8 @@ long ConfigNode::to_integer(const NumberSpec& spec) const {
     const double v = to_double(spec);
     if (std::floor(v) != v) fail("is not an integer", "an integer " + spec.describe().substr(2));
     // Beyond 2^53 a double no longer holds every integer, and a cast past LONG_MAX is undefined.
-    if (std::abs(v) > 9007199254740992.0) fail("is too large", "an integer " + spec.describe().substr(2));
+    if (std::abs(v) > 9007199254740992.0)
+        fail("is too large", "an integer " + spec.describe().substr(2));
     return static_cast<long>(v);
 }
 
@@ -255,10 +283,11 @@ std::string ConfigNode::to_string() const {
 }
 
 std::vector<double> ConfigNode::to_doubles(std::size_t n, const NumberSpec& spec) const {
-    const auto expected =
-        n ? fmt::format("a list of {} numbers, each {}", n, spec.describe()) : fmt::format("a list of numbers, each {}", spec.describe());
+    const auto expected = n ? fmt::format("a list of {} numbers, each {}", n, spec.describe())
+                            : fmt::format("a list of numbers, each {}", spec.describe());
     if (!impl_->node.IsSequence()) fail("is not a list", expected);
-    if (n != 0 && impl_->node.size() != n) fail(fmt::format("has {} entries", impl_->node.size()), expected);
+    if (n != 0 && impl_->node.size() != n)
+        fail(fmt::format("has {} entries", impl_->node.size()), expected);
     if (impl_->node.size() == 0) fail("is empty", expected);
     std::vector<double> out;
     out.reserve(impl_->node.size());
@@ -284,17 +313,19 @@ bool ConfigMap::has(std::string_view key) {
 namespace {
 // " (found 'aera' at line 12: a misspelling?)" when the map holds a key that was never asked
 // for and is close to the missing `key`; else empty.
-std::string misspelling_hint(const ConfigNode& map, const std::vector<std::string>& known, std::string_view key) {
+std::string misspelling_hint(const ConfigNode& map, const std::vector<std::string>& known,
+                             std::string_view key) {
     std::vector<std::string> unknown;
     for (const auto& k : map.map_keys())
         if (std::find(known.begin(), known.end(), k) == known.end()) unknown.push_back(k);
     // The key with a unit suffix ("ceiling_ft" for "ceiling"): MANTA reads SI.
     for (const auto& k : unknown) {
         if (k.size() > key.size() + 1 && k.starts_with(key) && k[key.size()] == '_') {
-            return fmt::format(" (found '{}' at line {}: MANTA reads '{}' in SI units{})", k, map.key_line(k), key,
-                               std::find(known.begin(), known.end(), std::string(key) + "_deg") != known.end()
-                                   ? fmt::format(" or '{}_deg' in degrees", key)
-                                   : "");
+            return fmt::format(
+                " (found '{}' at line {}: MANTA reads '{}' in SI units{})", k, map.key_line(k), key,
+                std::find(known.begin(), known.end(), std::string(key) + "_deg") != known.end()
+                    ? fmt::format(" or '{}_deg' in degrees", key)
+                    : "");
         }
     }
     const std::string guess = closest_match(key, unknown);
@@ -306,7 +337,8 @@ std::string misspelling_hint(const ConfigNode& map, const std::vector<std::strin
 ConfigNode ConfigMap::required(std::string_view key) {
     remember(key);
     if (!node_.has(key)) {
-        throw ConfigError(fmt::format("{}: missing required key '{}'{}", node_.where(), join_path(node_.key_path(), key),
+        throw ConfigError(fmt::format("{}: missing required key '{}'{}", node_.where(),
+                                      join_path(node_.key_path(), key),
                                       misspelling_hint(node_, known_, key)));
     }
     return node_.child(key);
@@ -316,19 +348,24 @@ void ConfigMap::fail(std::string_view key, std::string_view problem, std::string
     node_.child(key).fail(problem, expected);
 }
 
-double ConfigMap::number(std::string_view key, const NumberSpec& spec) { return required(key).to_double(spec); }
+double ConfigMap::number(std::string_view key, const NumberSpec& spec) {
+    return required(key).to_double(spec);
+}
 
 double ConfigMap::number_or(std::string_view key, double fallback, const NumberSpec& spec) {
     return has(key) ? node_.child(key).to_double(spec) : fallback;
 }
 
-long ConfigMap::integer(std::string_view key, const NumberSpec& spec) { return required(key).to_integer(spec); }
+long ConfigMap::integer(std::string_view key, const NumberSpec& spec) {
+    return required(key).to_integer(spec);
+}
 
 long ConfigMap::integer_or(std::string_view key, long fallback, const NumberSpec& spec) {
     return has(key) ? node_.child(key).to_integer(spec) : fallback;
 }
 
-std::vector<double> ConfigMap::numbers(std::string_view key, std::size_t n, const NumberSpec& spec) {
+std::vector<double> ConfigMap::numbers(std::string_view key, std::size_t n,
+                                       const NumberSpec& spec) {
     return required(key).to_doubles(n, spec);
 }
 
@@ -368,12 +405,14 @@ double ConfigMap::angle(std::string_view key, const NumberSpec& spec) {
     const bool rad = node_.has(key);
     const bool deg = node_.has(deg_key);
     if (rad && deg) {
-        node_.child(deg_key).fail(fmt::format("duplicates '{}'", key),
-                                  fmt::format("either '{}' (radians) or '{}' (degrees), not both", key, deg_key));
+        node_.child(deg_key).fail(
+            fmt::format("duplicates '{}'", key),
+            fmt::format("either '{}' (radians) or '{}' (degrees), not both", key, deg_key));
     }
     if (!rad && !deg) {
-        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees){}", node_.where(),
-                                      join_path(node_.key_path(), key), deg_key, misspelling_hint(node_, known_, deg_key)));
+        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees){}",
+                                      node_.where(), join_path(node_.key_path(), key), deg_key,
+                                      misspelling_hint(node_, known_, deg_key)));
     }
     if (deg) {
         const ConfigNode n = node_.child(deg_key);
@@ -386,9 +425,11 @@ double ConfigMap::angle(std::string_view key, const NumberSpec& spec) {
     const double v = n.to_double(widened(spec, "rad"));
     if (std::abs(v) > 2.0 * std::numbers::pi) {
         n.fail("is in radians but looks like degrees",
-               fmt::format("{} (write it as '{}' to give degrees)", NumberSpec{spec.min, spec.max, spec.min_exclusive,
-                                                                              spec.max_exclusive, "rad"}.describe(),
-                           deg_key));
+               fmt::format(
+                   "{} (write it as '{}' to give degrees)",
+                   NumberSpec{spec.min, spec.max, spec.min_exclusive, spec.max_exclusive, "rad"}
+                       .describe(),
+                   deg_key));
     }
     NumberSpec r = spec;
     r.unit = "rad";
@@ -406,15 +447,19 @@ std::array<double, 2> ConfigMap::angle_range(std::string_view key, const NumberS
     remember(deg_key);
     const bool deg = node_.has(deg_key);
     if (deg && node_.has(key)) {
-        node_.child(deg_key).fail(fmt::format("duplicates '{}'", key),
-                                  fmt::format("either '{}' (radians) or '{}' (degrees), not both", key, deg_key));
+        node_.child(deg_key).fail(
+            fmt::format("duplicates '{}'", key),
+            fmt::format("either '{}' (radians) or '{}' (degrees), not both", key, deg_key));
     }
     if (!deg && !node_.has(key)) {
-        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees){}", node_.where(),
-                                      join_path(node_.key_path(), key), deg_key, misspelling_hint(node_, known_, deg_key)));
+        throw ConfigError(fmt::format("{}: missing required key '{}' (or '{}' in degrees){}",
+                                      node_.where(), join_path(node_.key_path(), key), deg_key,
+                                      misspelling_hint(node_, known_, deg_key)));
     }
     const ConfigNode n = node_.child(deg ? deg_key : std::string(key));
-    const NumberSpec s = deg ? to_degrees(spec) : NumberSpec{spec.min, spec.max, spec.min_exclusive, spec.max_exclusive, "rad"};
+    const NumberSpec s =
+        deg ? to_degrees(spec)
+            : NumberSpec{spec.min, spec.max, spec.min_exclusive, spec.max_exclusive, "rad"};
     // Read without bounds first, so a radian value that looks like degrees is reported as such
     // rather than as merely out of range.
     auto v = n.to_doubles(2, widened(s, s.unit));
@@ -423,18 +468,22 @@ std::array<double, 2> ConfigMap::angle_range(std::string_view key, const NumberS
                fmt::format("{} (write it as '{}' to give degrees)", s.describe(), deg_key));
     for (std::size_t i = 0; i < 2; ++i)
         if (!s.accepts(v[i])) n.element(i).fail("is out of range", s.describe());
-    if (v[0] > v[1]) n.fail("has its lower bound above its upper bound", "[lower, upper] with lower <= upper");
+    if (v[0] > v[1])
+        n.fail("has its lower bound above its upper bound", "[lower, upper] with lower <= upper");
     const double f = deg ? std::numbers::pi / 180.0 : 1.0;
     return {v[0] * f, v[1] * f};
 }
 
-std::string ConfigMap::string(std::string_view key) { return required(key).to_string(); }
+std::string ConfigMap::string(std::string_view key) {
+    return required(key).to_string();
+}
 
 std::string ConfigMap::string_or(std::string_view key, std::string fallback) {
     return has(key) ? node_.child(key).to_string() : fallback;
 }
 
-std::string ConfigMap::choice(std::string_view key, std::initializer_list<std::string_view> choices) {
+std::string ConfigMap::choice(std::string_view key,
+                              std::initializer_list<std::string_view> choices) {
     const ConfigNode n = required(key);
     const std::string v = n.to_string();
     std::vector<std::string> list(choices.begin(), choices.end());
@@ -457,14 +506,18 @@ bool ConfigMap::boolean_or(std::string_view key, bool fallback) {
     return has(key) ? node_.child(key).to_bool() : fallback;
 }
 
-ConfigNode ConfigMap::child(std::string_view key) { return required(key); }
+ConfigNode ConfigMap::child(std::string_view key) {
+    return required(key);
+}
 
 std::optional<ConfigNode> ConfigMap::optional_child(std::string_view key) {
     if (!has(key)) return std::nullopt;
     return node_.child(key);
 }
 
-ConfigMap ConfigMap::map(std::string_view key) { return ConfigMap(required(key)); }
+ConfigMap ConfigMap::map(std::string_view key) {
+    return ConfigMap(required(key));
+}
 
 ConfigNode ConfigMap::sequence(std::string_view key, bool allow_empty) {
     ConfigNode n = required(key);
@@ -482,10 +535,11 @@ void ConfigMap::finish() const {
             if (key.size() > suffix.size() && key.ends_with(suffix)) {
                 const std::string base = key.substr(0, key.size() - suffix.size());
                 if (std::find(known_.begin(), known_.end(), base) != known_.end()) {
-                    hint = fmt::format(" (MANTA reads '{}' in SI units{}; convert the value)", base,
-                                       std::find(known_.begin(), known_.end(), base + "_deg") != known_.end()
-                                           ? fmt::format(", or '{}_deg' in degrees", base)
-                                           : "");
+                    hint = fmt::format(
+                        " (MANTA reads '{}' in SI units{}; convert the value)", base,
+                        std::find(known_.begin(), known_.end(), base + "_deg") != known_.end()
+                            ? fmt::format(", or '{}_deg' in degrees", base)
+                            : "");
                     break;
                 }
             }
@@ -496,8 +550,8 @@ void ConfigMap::finish() const {
         }
         std::vector<std::string> valid = known_;
         std::sort(valid.begin(), valid.end());
-        throw ConfigError(fmt::format("{}: unknown key '{}'{}; valid keys here: {}", n.where(), key, hint,
-                                      fmt::join(valid, ", ")));
+        throw ConfigError(fmt::format("{}: unknown key '{}'{}; valid keys here: {}", n.where(), key,
+                                      hint, fmt::join(valid, ", ")));
     }
 }
 
@@ -509,7 +563,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
     for (std::size_t i = 1; i <= a.size(); ++i) {
         cur[0] = i;
         for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t sub = prev[j - 1] + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1);
+            const std::size_t sub =
+                prev[j - 1] + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1);
             cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, sub});
         }
         std::swap(prev, cur);

@@ -1,14 +1,14 @@
 #include "manta/core/io.hpp"
 
+#include <fmt/format.h>
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 #include <system_error>
-#include <unistd.h>
 
 #include "manta/core/error.hpp"
 
@@ -18,7 +18,9 @@ void write_file_atomic(const std::filesystem::path& file, std::string_view conte
     namespace fs = std::filesystem;
     std::error_code ec;
     if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
-    if (ec) throw IoError(fmt::format("{}: cannot create directory: {}", file.parent_path().string(), ec.message()));
+    if (ec)
+        throw IoError(fmt::format("{}: cannot create directory: {}", file.parent_path().string(),
+                                  ec.message()));
     const fs::path tmp = file.string() + fmt::format(".tmp{}", static_cast<long>(::getpid()));
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -75,8 +77,10 @@ std::vector<double> CsvTable::column(std::size_t index) const {
 
 namespace {
 std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+        s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+        s.remove_suffix(1);
     return s;
 }
 std::vector<std::string_view> split(std::string_view line) {
@@ -84,7 +88,8 @@ std::vector<std::string_view> split(std::string_view line) {
     std::size_t start = 0;
     for (;;) {
         const std::size_t p = line.find(',', start);
-        out.push_back(trim(line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start)));
+        out.push_back(trim(
+            line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start)));
         if (p == std::string_view::npos) break;
         start = p + 1;
     }
@@ -100,7 +105,8 @@ CsvTable parse_csv(std::string_view text, std::string source) {
     bool have_header = false;
     while (pos <= text.size()) {
         const std::size_t nl = text.find('\n', pos);
-        std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        std::string_view line =
+            text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
         pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
         ++line_no;
         line = trim(line);
@@ -113,45 +119,54 @@ CsvTable parse_csv(std::string_view text, std::string source) {
         if (!have_header) {
             for (std::size_t i = 0; i < fields.size(); ++i) {
                 if (fields[i].empty())
-                    throw InputError(fmt::format("{}:{}: column {} of the header is empty", t.source, line_no, i + 1));
+                    throw InputError(fmt::format("{}:{}: column {} of the header is empty",
+                                                 t.source, line_no, i + 1));
                 if (std::find(t.columns.begin(), t.columns.end(), fields[i]) != t.columns.end())
-                    throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header", t.source, line_no, fields[i]));
+                    throw InputError(fmt::format("{}:{}: column '{}' appears twice in the header",
+                                                 t.source, line_no, fields[i]));
                 t.columns.emplace_back(fields[i]);
             }
             have_header = true;
             continue;
         }
         if (fields.size() != t.columns.size()) {
-            throw InputError(fmt::format("{}:{}: row has {} fields; expected {} as in the header", t.source, line_no,
-                                         fields.size(), t.columns.size()));
+            throw InputError(fmt::format("{}:{}: row has {} fields; expected {} as in the header",
+                                         t.source, line_no, fields.size(), t.columns.size()));
         }
         std::vector<double> row(fields.size());
         for (std::size_t i = 0; i < fields.size(); ++i) {
             const std::string_view f = fields[i];
             // from_chars rejects an explicit leading '+', which other tools write ("+1.5e+00").
-            const std::string_view digits = f.size() > 1 && f.front() == '+' && f[1] != '-' && f[1] != '+' ? f.substr(1) : f;
+            const std::string_view digits =
+                f.size() > 1 && f.front() == '+' && f[1] != '-' && f[1] != '+' ? f.substr(1) : f;
             double v = 0.0;
             const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), v);
             if (f.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size()) {
-                throw InputError(fmt::format("{}:{}: column '{}' value '{}' is not a number", t.source, line_no,
-                                             t.columns[i], f));
+                throw InputError(fmt::format("{}:{}: column '{}' value '{}' is not a number",
+                                             t.source, line_no, t.columns[i], f));
             }
             if (!std::isfinite(v)) {
-                throw InputError(fmt::format("{}:{}: column '{}' value '{}' is not finite; expected a finite number",
-                                             t.source, line_no, t.columns[i], f));
+                throw InputError(fmt::format(
+                    "{}:{}: column '{}' value '{}' is not finite; expected a finite number",
+                    t.source, line_no, t.columns[i], f));
             }
             row[i] = v;
         }
         t.rows.push_back(std::move(row));
         t.row_lines.push_back(line_no);
     }
-    if (!have_header) throw InputError(fmt::format("{}: no header line found; expected comma-separated column names", t.source));
+    if (!have_header)
+        throw InputError(fmt::format(
+            "{}: no header line found; expected comma-separated column names", t.source));
     return t;
 }
 
-CsvTable read_csv(const std::filesystem::path& file) { return parse_csv(read_file(file), file.string()); }
+CsvTable read_csv(const std::filesystem::path& file) {
+    return parse_csv(read_file(file), file.string());
+}
 
-std::string to_csv(const std::vector<std::string>& columns, const std::vector<std::vector<double>>& rows,
+std::string to_csv(const std::vector<std::string>& columns,
+                   const std::vector<std::vector<double>>& rows,
                    const std::vector<std::string>& comments) {
     std::string out;
     for (const auto& c : comments) out += fmt::format("# {}\n", c);

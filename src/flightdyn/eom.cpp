@@ -15,7 +15,8 @@ void finalize(FlightModel& model) {
         for (const auto& t : model.aero->tables()) {
             if (t.kind != aero::TableKind::dynamic) continue;
             for (const auto& c : t.columns) {
-                if (c.ends_with("_alphadot") || c.ends_with("_betadot")) model.angle_rate_terms = true;
+                if (c.ends_with("_alphadot") || c.ends_with("_betadot"))
+                    model.angle_rate_terms = true;
             }
         }
     }
@@ -23,22 +24,28 @@ void finalize(FlightModel& model) {
 }
 
 void validate(const FlightModel& m) {
-    const std::string who = m.name.empty() ? "flight model" : fmt::format("flight model '{}'", m.name);
+    const std::string who =
+        m.name.empty() ? "flight model" : fmt::format("flight model '{}'", m.name);
     if (!(m.mass.mass > 0.0 && std::isfinite(m.mass.mass)))
-        throw InputError(fmt::format("{}: mass {} kg; expected a finite number > 0", who, m.mass.mass));
-    if (!m.mass.inertia.allFinite() || (m.mass.inertia - m.mass.inertia.transpose()).norm() > 1e-9 * m.mass.inertia.norm())
+        throw InputError(
+            fmt::format("{}: mass {} kg; expected a finite number > 0", who, m.mass.mass));
+    if (!m.mass.inertia.allFinite() ||
+        (m.mass.inertia - m.mass.inertia.transpose()).norm() > 1e-9 * m.mass.inertia.norm())
         throw InputError(fmt::format("{}: inertia tensor is not finite and symmetric", who));
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(m.mass.inertia);
     if (es.eigenvalues().minCoeff() <= 0.0)
-        throw InputError(fmt::format("{}: inertia tensor is not positive definite (smallest principal moment {} kg m^2)",
-                                     who, es.eigenvalues().minCoeff()));
+        throw InputError(fmt::format(
+            "{}: inertia tensor is not positive definite (smallest principal moment {} kg m^2)",
+            who, es.eigenvalues().minCoeff()));
     if (m.aero) {
         if (!(m.reference.area > 0.0 && m.reference.span > 0.0 && m.reference.chord > 0.0))
-            throw InputError(fmt::format("{}: reference area, span and chord must be > 0 (got {}, {}, {})", who,
-                                         m.reference.area, m.reference.span, m.reference.chord));
+            throw InputError(
+                fmt::format("{}: reference area, span and chord must be > 0 (got {}, {}, {})", who,
+                            m.reference.area, m.reference.span, m.reference.chord));
     }
     if (!(m.environment.gravity >= 0.0 && std::isfinite(m.environment.gravity)))
-        throw InputError(fmt::format("{}: gravity {} m/s^2; expected a finite number >= 0", who, m.environment.gravity));
+        throw InputError(fmt::format("{}: gravity {} m/s^2; expected a finite number >= 0", who,
+                                     m.environment.gravity));
     m.engine.validate(who + " engine");
 }
 
@@ -105,7 +112,8 @@ FlightOutputs outputs(const FlightModel& m, const Loads<double>& L, const EulerS
     const double W = m.mass.mass * m.environment.gravity;
     o.nz = W > 0 ? -L.force_body.z() / W : 0.0;
     o.ny = W > 0 ? L.force_body.y() / W : 0.0;
-    const auto wind = aero::wind_from_body(L.coefficients.CX, L.coefficients.CY, L.coefficients.CZ, L.alpha, L.beta);
+    const auto wind = aero::wind_from_body(L.coefficients.CX, L.coefficients.CY, L.coefficients.CZ,
+                                           L.alpha, L.beta);
     o.CL = wind.CL;
     o.CD = wind.CD;
     o.CY = wind.CY;
@@ -123,8 +131,8 @@ FlightOutputs outputs(const FlightModel& m, const Loads<double>& L, const EulerS
 }
 
 // Explicit instantiation for double keeps the common path compiled once.
-template EulerState<double> euler_rhs<double>(const FlightModel&, const EulerState<double>&, const Controls<double>&,
-                                              Loads<double>*);
+template EulerState<double> euler_rhs<double>(const FlightModel&, const EulerState<double>&,
+                                              const Controls<double>&, Loads<double>*);
 template QuatState<double> quaternion_rhs<double>(const FlightModel&, const QuatState<double>&,
                                                   const Controls<double>&, Loads<double>*);
 

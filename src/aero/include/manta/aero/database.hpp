@@ -75,12 +75,12 @@ struct OutOfRangeEntry {
     std::uint64_t above = 0;  ///< queries over the last breakpoint
     double lowest = 0.0;      ///< most extreme query values seen (valid when below/above > 0)
     double highest = 0.0;
-    double table_min = 0.0;   ///< first breakpoint of the axis (the table's range)
-    double table_max = 0.0;   ///< last breakpoint of the axis
+    double table_min = 0.0;  ///< first breakpoint of the axis (the table's range)
+    double table_max = 0.0;  ///< last breakpoint of the axis
 };
 
 struct OutOfRangeReport {
-    std::uint64_t evaluations = 0;  ///< evaluate() calls since the last reset
+    std::uint64_t evaluations = 0;         ///< evaluate() calls since the last reset
     std::vector<OutOfRangeEntry> entries;  ///< only (table, axis) pairs with a count > 0
     [[nodiscard]] std::uint64_t total() const;
     /// One line per entry, e.g. "static/alpha: 12 above 0.2094 (max 0.25)"; empty if none.
@@ -125,7 +125,8 @@ public:
     /// Validates: exactly one static table; at most one control table per control, containing
     /// that control's axis; at most one dynamic table; axes strictly increasing and not repeated;
     /// values sized and finite; column names valid for `axes`. InputError otherwise.
-    AeroDatabase(DatabaseInfo info, ForceAxes force_axes, Extrapolation extrapolation, std::vector<Table> tables);
+    AeroDatabase(DatabaseInfo info, ForceAxes force_axes, Extrapolation extrapolation,
+                 std::vector<Table> tables);
     AeroDatabase(const AeroDatabase& other);
     AeroDatabase& operator=(const AeroDatabase& other);
     AeroDatabase(AeroDatabase&&) noexcept;
@@ -153,7 +154,8 @@ public:
 
     /// Tabulate a linear derivative model on `grids` (wind-axis forces). The result reproduces
     /// the linear terms exactly under multilinear interpolation.
-    [[nodiscard]] static AeroDatabase from_derivatives(const LinearDerivatives& d, const DerivativeGrids& grids,
+    [[nodiscard]] static AeroDatabase from_derivatives(const LinearDerivatives& d,
+                                                       const DerivativeGrids& grids,
                                                        DatabaseInfo info);
 
     struct Impl;

@@ -55,7 +55,8 @@ struct WindForceCoefficients {
 /// x_w = (ca cb, sb, sa cb), y_w = (-ca sb, cb, -sa sb), z_w = (-sa, 0, ca) in body components,
 /// F_body = -CD x_w + CY y_w - CL z_w.
 template <class T>
-[[nodiscard]] std::array<T, 3> body_from_wind(const T& CL, const T& CD, const T& CY, const T& alpha, const T& beta) {
+[[nodiscard]] std::array<T, 3> body_from_wind(const T& CL, const T& CD, const T& CY, const T& alpha,
+                                              const T& beta) {
     using std::cos;
     using std::sin;
     const T ca = cos(alpha), sa = sin(alpha), cb = cos(beta), sb = sin(beta);
@@ -65,8 +66,8 @@ template <class T>
 
 /// Wind-axis force coefficients from body-axis ones (inverse of body_from_wind).
 template <class T>
-[[nodiscard]] WindForceCoefficients<T> wind_from_body(const T& CX, const T& CY, const T& CZ, const T& alpha,
-                                                      const T& beta) {
+[[nodiscard]] WindForceCoefficients<T> wind_from_body(const T& CX, const T& CY, const T& CZ,
+                                                      const T& alpha, const T& beta) {
     using std::cos;
     using std::sin;
     const T ca = cos(alpha), sa = sin(alpha), cb = cos(beta), sb = sin(beta);

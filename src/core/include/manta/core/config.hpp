@@ -49,9 +49,9 @@ public:
     /// Parse text; `source` names it in messages.
     [[nodiscard]] static ConfigNode parse_string(std::string_view text, std::string source);
 
-    [[nodiscard]] const std::string& source() const;  ///< file name or source label
+    [[nodiscard]] const std::string& source() const;    ///< file name or source label
     [[nodiscard]] const std::string& key_path() const;  ///< e.g. "mass.cases[0].ixx"
-    [[nodiscard]] int line() const;  ///< 1-based line, 0 if unknown
+    [[nodiscard]] int line() const;                     ///< 1-based line, 0 if unknown
     /// "file:line: key 'path'" prefix for messages.
     [[nodiscard]] std::string where() const;
     /// The node's text as written (scalars), or "<map>"/"<sequence>"/"<null>".
@@ -64,8 +64,8 @@ public:
     [[nodiscard]] bool is_scalar() const;
     [[nodiscard]] std::size_t size() const;
 
-    [[nodiscard]] ConfigNode element(std::size_t i) const;  ///< sequence element
-    [[nodiscard]] bool has(std::string_view key) const;     ///< map has key
+    [[nodiscard]] ConfigNode element(std::size_t i) const;       ///< sequence element
+    [[nodiscard]] bool has(std::string_view key) const;          ///< map has key
     [[nodiscard]] ConfigNode child(std::string_view key) const;  ///< may be undefined
     [[nodiscard]] std::vector<std::string> map_keys() const;
     [[nodiscard]] int key_line(std::string_view key) const;  ///< line of a map key, 0 if unknown
@@ -76,7 +76,8 @@ public:
     [[nodiscard]] bool to_bool() const;
     [[nodiscard]] std::string to_string() const;
     /// Sequence of numbers; `n` = required length (0: any non-empty length).
-    [[nodiscard]] std::vector<double> to_doubles(std::size_t n = 0, const NumberSpec& spec = {}) const;
+    [[nodiscard]] std::vector<double> to_doubles(std::size_t n = 0,
+                                                 const NumberSpec& spec = {}) const;
 
     /// Throw a ConfigError "<where>: value '<v>' <problem>; expected <expected>".
     [[noreturn]] void fail(std::string_view problem, std::string_view expected) const;
@@ -103,14 +104,16 @@ public:
     [[nodiscard]] double number_or(std::string_view key, double fallback, const NumberSpec& spec);
     [[nodiscard]] long integer(std::string_view key, const NumberSpec& spec);
     [[nodiscard]] long integer_or(std::string_view key, long fallback, const NumberSpec& spec);
-    [[nodiscard]] std::vector<double> numbers(std::string_view key, std::size_t n, const NumberSpec& spec);
+    [[nodiscard]] std::vector<double> numbers(std::string_view key, std::size_t n,
+                                              const NumberSpec& spec);
     [[nodiscard]] std::array<double, 3> vec3(std::string_view key, const NumberSpec& spec);
 
     /// An angle, returned in radians, written either as `key` (radians) or `key_deg` (degrees).
     /// `spec` bounds are in radians. A radian value above 2*pi in magnitude is reported as a likely
     /// unit mistake.
     [[nodiscard]] double angle(std::string_view key, const NumberSpec& spec);
-    [[nodiscard]] double angle_or(std::string_view key, double fallback_rad, const NumberSpec& spec);
+    [[nodiscard]] double angle_or(std::string_view key, double fallback_rad,
+                                  const NumberSpec& spec);
     [[nodiscard]] bool has_angle(std::string_view key);
     /// Pair [lo, hi] of angles (radians) from `key` or `key_deg`, lo <= hi.
     [[nodiscard]] std::array<double, 2> angle_range(std::string_view key, const NumberSpec& spec);
@@ -118,7 +121,8 @@ public:
     [[nodiscard]] std::string string(std::string_view key);
     [[nodiscard]] std::string string_or(std::string_view key, std::string fallback);
     /// A string that must be one of `choices`; the error lists them.
-    [[nodiscard]] std::string choice(std::string_view key, std::initializer_list<std::string_view> choices);
+    [[nodiscard]] std::string choice(std::string_view key,
+                                     std::initializer_list<std::string_view> choices);
     [[nodiscard]] std::string choice_or(std::string_view key, std::string fallback,
                                         std::initializer_list<std::string_view> choices);
     [[nodiscard]] bool boolean_or(std::string_view key, bool fallback);
@@ -132,7 +136,8 @@ public:
     [[nodiscard]] ConfigNode sequence(std::string_view key, bool allow_empty = false);
 
     /// Throw a ConfigError about `key` of this map.
-    [[noreturn]] void fail(std::string_view key, std::string_view problem, std::string_view expected);
+    [[noreturn]] void fail(std::string_view key, std::string_view problem,
+                           std::string_view expected);
 
     /// Reject keys never asked for, suggesting the closest known key. Call after reading.
     void finish() const;
@@ -147,6 +152,7 @@ private:
 /// Levenshtein edit distance (used for "did you mean" suggestions).
 [[nodiscard]] std::size_t edit_distance(std::string_view a, std::string_view b);
 /// Closest candidate to `word` if reasonably close, else empty.
-[[nodiscard]] std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
+[[nodiscard]] std::string closest_match(std::string_view word,
+                                        const std::vector<std::string>& candidates);
 
 }  // namespace manta::core

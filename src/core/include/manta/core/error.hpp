@@ -17,7 +17,8 @@ public:
     [[nodiscard]] virtual int exit_code() const noexcept { return 1; }
 };
 
-/// A configuration file (YAML) is wrong: the message names file, line, key path, value, expectation.
+/// A configuration file (YAML) is wrong: the message names file, line, key path, value,
+/// expectation.
 class ConfigError : public Error {
 public:
     using Error::Error;
@@ -51,22 +52,23 @@ public:
 };
 
 namespace detail {
-[[noreturn]] void require_failed(const char* expr, const char* file, int line, const std::string& msg);
+[[noreturn]] void require_failed(const char* expr, const char* file, int line,
+                                 const std::string& msg);
 }  // namespace detail
 
 }  // namespace manta
 
 /// Cheap precondition check that stays on in release builds; throws manta::InputError.
-#define MANTA_REQUIRE(cond, msg)                                                                  \
-    do {                                                                                          \
-        if (!(cond)) ::manta::detail::require_failed(#cond, __FILE__, __LINE__, (msg));           \
+#define MANTA_REQUIRE(cond, msg)                                                        \
+    do {                                                                                \
+        if (!(cond)) ::manta::detail::require_failed(#cond, __FILE__, __LINE__, (msg)); \
     } while (false)
 
 #ifndef NDEBUG
 /// Invariant check for programming errors, debug builds only.
-#define MANTA_ASSERT(cond)                                                                        \
-    do {                                                                                          \
-        if (!(cond)) ::manta::detail::require_failed(#cond, __FILE__, __LINE__, "assertion");     \
+#define MANTA_ASSERT(cond)                                                                    \
+    do {                                                                                      \
+        if (!(cond)) ::manta::detail::require_failed(#cond, __FILE__, __LINE__, "assertion"); \
     } while (false)
 #else
 #define MANTA_ASSERT(cond) ((void)0)

@@ -22,11 +22,11 @@ void write_file_atomic(const std::filesystem::path& file, std::string_view conte
 /// A numeric CSV table: header of column names, rows of finite numbers. Lines starting with '#'
 /// are comments (kept in `comments`). Whitespace around fields is ignored.
 struct CsvTable {
-    std::string source;                    ///< file name, for messages
-    std::vector<std::string> columns;      ///< header names
+    std::string source;                     ///< file name, for messages
+    std::vector<std::string> columns;       ///< header names
     std::vector<std::vector<double>> rows;  ///< rows.size() x columns.size()
-    std::vector<int> row_lines;            ///< 1-based file line of each row
-    std::vector<std::string> comments;     ///< comment lines without the leading '#'
+    std::vector<int> row_lines;             ///< 1-based file line of each row
+    std::vector<std::string> comments;      ///< comment lines without the leading '#'
 
     /// Index of column `name`, or -1.
     [[nodiscard]] int find(std::string_view name) const;
@@ -43,7 +43,8 @@ struct CsvTable {
 [[nodiscard]] CsvTable read_csv(const std::filesystem::path& file);
 
 /// Build CSV text: optional '#' comment lines, a header and rows (values written exactly).
-[[nodiscard]] std::string to_csv(const std::vector<std::string>& columns, const std::vector<std::vector<double>>& rows,
+[[nodiscard]] std::string to_csv(const std::vector<std::string>& columns,
+                                 const std::vector<std::vector<double>>& rows,
                                  const std::vector<std::string>& comments = {});
 
 }  // namespace manta::core

@@ -10,14 +10,16 @@ namespace manta::core {
 
 /// Plain value of a scalar: identity for arithmetic types.
 template <class T>
-    requires std::is_arithmetic_v<T>
+requires std::is_arithmetic_v<T>
 [[nodiscard]] constexpr double value_of(T x) noexcept {
     return static_cast<double>(x);
 }
 
 /// Plain value of an expression-template or AD scalar that exposes `.value()`.
 template <class T>
-    requires(!std::is_arithmetic_v<T>) && requires(const T& t) { t.value(); }
+requires(!std::is_arithmetic_v<T>) && requires(const T& t) {
+    t.value();
+}
 [[nodiscard]] double value_of(const T& x) {
     return value_of(x.value());
 }

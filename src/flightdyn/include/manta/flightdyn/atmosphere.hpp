@@ -15,20 +15,21 @@ namespace manta::flightdyn {
 /// Air properties at one altitude (SI).
 template <class T>
 struct AtmosphereState {
-    T temperature{0.0};         ///< [K]
-    T pressure{0.0};            ///< [Pa]
-    T density{0.0};             ///< [kg/m^3]
-    T speed_of_sound{0.0};      ///< [m/s]
-    T dynamic_viscosity{0.0};   ///< [Pa s] (Sutherland's law, as in the 1976 standard)
+    T temperature{0.0};            ///< [K]
+    T pressure{0.0};               ///< [Pa]
+    T density{0.0};                ///< [kg/m^3]
+    T speed_of_sound{0.0};         ///< [m/s]
+    T dynamic_viscosity{0.0};      ///< [Pa s] (Sutherland's law, as in the 1976 standard)
     T geopotential_altitude{0.0};  ///< [m']
 };
 
 namespace us1976_constants {
-inline constexpr double earth_radius = 6356766.0;    ///< r0 [m], for geopotential altitude
-inline constexpr double g0 = 9.80665;                ///< [m/s^2]
+inline constexpr double earth_radius = 6356766.0;          ///< r0 [m], for geopotential altitude
+inline constexpr double g0 = 9.80665;                      ///< [m/s^2]
 inline constexpr double universal_gas_constant = 8314.32;  ///< R* [J/(kmol K)] (the 1976 value)
-inline constexpr double molar_mass = 28.9644;              ///< M0 [kg/kmol], sea-level mean molecular weight
-inline constexpr double gas_constant = universal_gas_constant / molar_mass;  ///< R* / M0 = 287.05312 J/(kg K)
+inline constexpr double molar_mass = 28.9644;  ///< M0 [kg/kmol], sea-level mean molecular weight
+inline constexpr double gas_constant =
+    universal_gas_constant / molar_mass;  ///< R* / M0 = 287.05312 J/(kg K)
 inline constexpr double gamma = 1.4;
 inline constexpr double sutherland_beta = 1.458e-6;  ///< [kg/(s m K^1/2)]
 inline constexpr double sutherland_s = 110.4;        ///< [K]
@@ -79,7 +80,8 @@ template <class T>
                          " m is outside the US Standard Atmosphere 1976 range [-5000, 84852] m");
     }
     std::size_t i = 0;
-    while (i + 1 < us1976_constants::layers.size() && hv >= us1976_constants::layers[i + 1].h_base) ++i;
+    while (i + 1 < us1976_constants::layers.size() && hv >= us1976_constants::layers[i + 1].h_base)
+        ++i;
     const auto& L = us1976_constants::layers[i];
     constexpr double gmr = us1976_constants::g0 / us1976_constants::gas_constant;  // g0 M0 / R*
     AtmosphereState<T> a;
@@ -93,9 +95,10 @@ template <class T>
         a.pressure = L.p_base * pow(T(a.temperature / L.t_base), -gmr / L.lapse);
     }
     a.density = a.pressure / (us1976_constants::gas_constant * a.temperature);
-    a.speed_of_sound = sqrt(T(us1976_constants::gamma * us1976_constants::gas_constant * a.temperature));
-    a.dynamic_viscosity =
-        us1976_constants::sutherland_beta * a.temperature * sqrt(a.temperature) / (a.temperature + us1976_constants::sutherland_s);
+    a.speed_of_sound =
+        sqrt(T(us1976_constants::gamma * us1976_constants::gas_constant * a.temperature));
+    a.dynamic_viscosity = us1976_constants::sutherland_beta * a.temperature * sqrt(a.temperature) /
+                          (a.temperature + us1976_constants::sutherland_s);
     return a;
 }
 

@@ -4,8 +4,8 @@
 ///  - `lapse`: T = throttle * T_sl * sigma^n * (1 + a1 M + a2 M^2), sigma = rho / rho_sl.
 ///    A density-ratio power law of the semi-empirical kind given by Roskam & Lan, *Airplane
 ///    Aerodynamics and Performance* (DARcorporation, 1997), ch. 7, for turbojets and turbofans,
-///    with a Mach polynomial for ram and inlet effects. Defaults n = 0.7, a1 = -0.3, a2 = 0.15 for a
-///    small-bypass-ratio turbofan; documented in docs/flight-dynamics.md.
+///    with a Mach polynomial for ram and inlet effects. Defaults n = 0.7, a1 = -0.3, a2 = 0.15 for
+///    a small-bypass-ratio turbofan; documented in docs/flight-dynamics.md.
 ///  - `table`: T(altitude, mach, throttle) by trilinear interpolation with linear extrapolation
 ///    (the Stevens & Lewis F-16 idle/military/maximum tables fit this form exactly).
 /// Thrust acts along the body x axis rotated by `thrust_angle` (nose-up positive) through
@@ -42,7 +42,8 @@ struct EngineModel {
 
     /// Thrust [N] at geometric altitude h [m], Mach M, throttle in [0, 1], density ratio sigma.
     template <class T>
-    [[nodiscard]] T thrust_at(const T& h, const T& M, const T& throttle_setting, const T& sigma) const;
+    [[nodiscard]] T thrust_at(const T& h, const T& M, const T& throttle_setting,
+                              const T& sigma) const;
 
     /// Validate sizes and monotonicity; InputError naming `where`.
     void validate(const std::string& where) const;
@@ -62,7 +63,8 @@ template <class T>
 T EngineModel::thrust_at(const T& h, const T& M, const T& throttle_setting, const T& sigma) const {
     using std::pow;
     if (type == Type::lapse) {
-        return throttle_setting * static_thrust_sl * pow(sigma, density_exponent) * (1.0 + mach_a1 * M + mach_a2 * M * M);
+        return throttle_setting * static_thrust_sl * pow(sigma, density_exponent) *
+               (1.0 + mach_a1 * M + mach_a2 * M * M);
     }
     // Trilinear with linear extrapolation.
     const std::vector<double>* ax[3] = {&altitude, &mach, &throttle};

@@ -79,8 +79,8 @@ namespace detail {
 /// Air data, atmosphere and thrust at a state: the loads without their aerodynamic part.
 /// `airspeed`, `alpha`, `beta` are those of the body velocity (|v|, atan2(w, u), asin(v/|v|)).
 template <class T>
-[[nodiscard]] Loads<T> propulsive_loads(const FlightModel& m, const T& h, const T& airspeed, const T& alpha,
-                                        const T& beta, const Controls<T>& u) {
+[[nodiscard]] Loads<T> propulsive_loads(const FlightModel& m, const T& h, const T& airspeed,
+                                        const T& alpha, const T& beta, const Controls<T>& u) {
     Loads<T> L;
     L.atmosphere = us1976(h);
     const T zero = zero_like(h);
@@ -98,7 +98,8 @@ template <class T>
     L.moment_body.setConstant(zero);
     if (m.engine.has_position) {
         const Eigen::Vector3d r = body_from_geom(
-            Eigen::Vector3d(m.engine.position[0], m.engine.position[1], m.engine.position[2]) - m.mass.cg_geom);
+            Eigen::Vector3d(m.engine.position[0], m.engine.position[1], m.engine.position[2]) -
+            m.mass.cg_geom);
         const Vec3<T>& FT = L.force_body;
         L.moment_body.x() += r.y() * FT.z() - r.z() * FT.y();
         L.moment_body.y() += r.z() * FT.x() - r.x() * FT.z();
@@ -111,8 +112,8 @@ template <class T>
 /// controls `u` and angle rates alpha_dot, beta_dot [rad/s] to loads whose air data are set.
 /// Nothing is added without an aero database or below 1e-9 m/s, where alpha and beta are undefined.
 template <class T>
-void add_aero_loads(const FlightModel& m, Loads<T>& L, const Vec3<T>& omega_body, const Controls<T>& u,
-                    const T& alpha_dot, const T& beta_dot) {
+void add_aero_loads(const FlightModel& m, Loads<T>& L, const Vec3<T>& omega_body,
+                    const Controls<T>& u, const T& alpha_dot, const T& beta_dot) {
     if (!m.aero || !(core::value_of(L.airspeed) > 1e-9)) return;
     const double S = m.reference.area, b = m.reference.span, c = m.reference.chord;
     aero::AeroQuery<T> q;
@@ -142,9 +143,10 @@ void add_aero_loads(const FlightModel& m, Loads<T>& L, const Vec3<T>& omega_body
 /// compute_loads with the air data of the body velocity already known (the Euler-angle form has
 /// them in its state, which saves an atan2 and an asin per evaluation).
 template <class T>
-[[nodiscard]] Loads<T> compute_loads_known(const FlightModel& m, const T& h, const T& airspeed, const T& alpha,
-                                           const T& beta, const Vec3<T>& omega_body, const Controls<T>& u,
-                                           const T& alpha_dot, const T& beta_dot) {
+[[nodiscard]] Loads<T> compute_loads_known(const FlightModel& m, const T& h, const T& airspeed,
+                                           const T& alpha, const T& beta, const Vec3<T>& omega_body,
+                                           const Controls<T>& u, const T& alpha_dot,
+                                           const T& beta_dot) {
     Loads<T> L = propulsive_loads(m, h, airspeed, alpha, beta, u);
     add_aero_loads(m, L, omega_body, u, alpha_dot, beta_dot);
     return L;
@@ -157,8 +159,8 @@ template <class T>
 /// beta_dot [rad/s] (used only by tables with alpha-dot/beta-dot columns).
 template <class T>
 [[nodiscard]] Loads<T> compute_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body,
-                                     const Vec3<T>& omega_body, const Controls<T>& u, const T& alpha_dot,
-                                     const T& beta_dot) {
+                                     const Vec3<T>& omega_body, const Controls<T>& u,
+                                     const T& alpha_dot, const T& beta_dot) {
     using std::asin;
     using std::atan2;
     using std::sqrt;
@@ -167,15 +169,17 @@ template <class T>
     const bool moving = core::value_of(airspeed) > 1e-9;
     const T alpha = moving ? T(atan2(v_body.z(), v_body.x())) : zero;
     const T beta = moving ? T(asin(T(v_body.y() / airspeed))) : zero;
-    return detail::compute_loads_known(m, h, airspeed, alpha, beta, omega_body, u, alpha_dot, beta_dot);
+    return detail::compute_loads_known(m, h, airspeed, alpha, beta, omega_body, u, alpha_dot,
+                                       beta_dot);
 }
 
 namespace detail {
 
 /// Body-axis acceleration dv/dt = F/m + g_body - omega x v.
 template <class T>
-[[nodiscard]] Vec3<T> velocity_rate(const FlightModel& m, const Vec3<T>& force_body, const Vec3<T>& gravity_body,
-                                    const Vec3<T>& v, const Vec3<T>& w) {
+[[nodiscard]] Vec3<T> velocity_rate(const FlightModel& m, const Vec3<T>& force_body,
+                                    const Vec3<T>& gravity_body, const Vec3<T>& v,
+                                    const Vec3<T>& w) {
     const double inv_m = 1.0 / m.mass.mass;
     return Vec3<T>(force_body.x() * inv_m + gravity_body.x() - (w.y() * v.z() - w.z() * v.y()),
                    force_body.y() * inv_m + gravity_body.y() - (w.z() * v.x() - w.x() * v.z()),
@@ -188,7 +192,8 @@ template <class T>
 /// omega_dot = I^-1 (M - omega x (I omega + h_engine)).
 template <class T>
 void rigid_body_accelerations(const FlightModel& m, const Loads<T>& L, const Vec3<T>& gravity_body,
-                              const Vec3<T>& v_body, const Vec3<T>& w, Vec3<T>& v_dot, Vec3<T>& w_dot) {
+                              const Vec3<T>& v_body, const Vec3<T>& w, Vec3<T>& v_dot,
+                              Vec3<T>& w_dot) {
     v_dot = detail::velocity_rate(m, L.force_body, gravity_body, v_body, w);
     const Eigen::Matrix3d& I = m.mass.inertia;
     const Eigen::Vector3d& he = m.engine_angular_momentum;
@@ -229,8 +234,9 @@ void angle_rates(const Vec3<T>& v, const Vec3<T>& vd, T& alpha_dot, T& beta_dot)
 /// affine combination of the three. Skipped when the tables have no such terms, or when alpha and
 /// beta are undefined (V = 0 or u = w = 0).
 template <class T>
-[[nodiscard]] Loads<T> consistent_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body, const T& airspeed,
-                                        const T& alpha, const T& beta, const Vec3<T>& w, const Controls<T>& u,
+[[nodiscard]] Loads<T> consistent_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body,
+                                        const T& airspeed, const T& alpha, const T& beta,
+                                        const Vec3<T>& w, const Controls<T>& u,
                                         const Vec3<T>& gravity_body) {
     const T zero = zero_like(h);
     // Atmosphere and thrust do not depend on the angle rates: once.
@@ -239,7 +245,8 @@ template <class T>
     add_aero_loads(m, L, w, u, zero, zero);
     const double uw2 = core::value_of(v_body.x()) * core::value_of(v_body.x()) +
                        core::value_of(v_body.z()) * core::value_of(v_body.z());
-    if (!m.angle_rate_terms || !m.aero || !(core::value_of(airspeed) > 1e-9) || !(uw2 > 1e-18)) return L;
+    if (!m.angle_rate_terms || !m.aero || !(core::value_of(airspeed) > 1e-9) || !(uw2 > 1e-18))
+        return L;
     const T one = zero + 1.0;
     Loads<T> La = base, Lb = base;
     add_aero_loads(m, La, w, u, one, zero);
@@ -253,7 +260,9 @@ template <class T>
     const T det = k11 * k22 - k12 * k21;
     const T ad = (a0 * k22 - k12 * b0) / det;
     const T bd = (k11 * b0 - k21 * a0) / det;
-    auto mix = [&](const T& x0, const T& xa, const T& xb) { return T(x0 + ad * (xa - x0) + bd * (xb - x0)); };
+    auto mix = [&](const T& x0, const T& xa, const T& xb) {
+        return T(x0 + ad * (xa - x0) + bd * (xb - x0));
+    };
     for (int i = 0; i < 3; ++i) {
         L.force_body[i] = mix(L.force_body[i], La.force_body[i], Lb.force_body[i]);
         L.moment_body[i] = mix(L.moment_body[i], La.moment_body[i], Lb.moment_body[i]);
@@ -274,8 +283,8 @@ template <class T>
 /// terms the implicit dependence is solved exactly (the loads are affine in them; see
 /// detail::consistent_loads).
 template <class T>
-[[nodiscard]] EulerState<T> euler_rhs(const FlightModel& m, const EulerState<T>& s, const Controls<T>& u,
-                                      Loads<T>* loads_out = nullptr) {
+[[nodiscard]] EulerState<T> euler_rhs(const FlightModel& m, const EulerState<T>& s,
+                                      const Controls<T>& u, Loads<T>* loads_out = nullptr) {
     using std::asin;
     using std::atan2;
     using std::cos;
@@ -294,12 +303,14 @@ template <class T>
     const Vec3<T> g_body(-g * sth, g * sphi * cth, g * cphi * cth);
     // Air data of v_body: the state's own (V, alpha, beta) when they are the principal values,
     // as atan2/asin would return them; otherwise (V < 0, |alpha| > pi, |beta| > pi/2) computed.
-    const double Vv = core::value_of(V), av = core::value_of(s[euler::alpha]), bv = core::value_of(s[euler::beta]);
+    const double Vv = core::value_of(V), av = core::value_of(s[euler::alpha]),
+                 bv = core::value_of(s[euler::beta]);
     const bool principal = Vv > 0.0 && std::abs(av) <= core::pi && std::abs(bv) < 0.5 * core::pi;
     const T airspeed = principal ? V : T(sqrt(T(v_body.squaredNorm())));
     const T alpha = principal ? s[euler::alpha] : T(atan2(v_body.z(), v_body.x()));
-    const T beta = principal || !(core::value_of(airspeed) > 0.0) ? s[euler::beta]
-                                                                  : T(asin(T(v_body.y() / airspeed)));
+    const T beta = principal || !(core::value_of(airspeed) > 0.0)
+                       ? s[euler::beta]
+                       : T(asin(T(v_body.y() / airspeed)));
     const Loads<T> L = detail::consistent_loads(m, h, v_body, airspeed, alpha, beta, w, u, g_body);
     Vec3<T> v_dot, w_dot;
     rigid_body_accelerations(m, L, g_body, v_body, w, v_dot, w_dot);
@@ -315,8 +326,10 @@ template <class T>
     d[euler::theta] = w.y() * cphi - w.z() * sphi;
     d[euler::psi] = qs_rc / cth;
     // Navigation: earth-axis velocity = C_earth_from_body * v_body.
-    d[euler::x] = cth * cpsi * uu + (sphi * sth * cpsi - cphi * spsi) * vv + (cphi * sth * cpsi + sphi * spsi) * ww;
-    d[euler::y] = cth * spsi * uu + (sphi * sth * spsi + cphi * cpsi) * vv + (cphi * sth * spsi - sphi * cpsi) * ww;
+    d[euler::x] = cth * cpsi * uu + (sphi * sth * cpsi - cphi * spsi) * vv +
+                  (cphi * sth * cpsi + sphi * spsi) * ww;
+    d[euler::y] = cth * spsi * uu + (sphi * sth * spsi + cphi * cpsi) * vv +
+                  (cphi * sth * spsi - sphi * cpsi) * ww;
     d[euler::z] = -sth * uu + sphi * cth * vv + cphi * cth * ww;
     d[euler::p] = w_dot.x();
     d[euler::q] = w_dot.y();
@@ -327,8 +340,8 @@ template <class T>
 
 /// Time derivative of the quaternion state (see euler_rhs for alpha-dot terms).
 template <class T>
-[[nodiscard]] QuatState<T> quaternion_rhs(const FlightModel& m, const QuatState<T>& s, const Controls<T>& u,
-                                          Loads<T>* loads_out = nullptr) {
+[[nodiscard]] QuatState<T> quaternion_rhs(const FlightModel& m, const QuatState<T>& s,
+                                          const Controls<T>& u, Loads<T>* loads_out = nullptr) {
     using std::asin;
     using std::atan2;
     using std::sqrt;
@@ -339,9 +352,10 @@ template <class T>
     // C_earth_from_body of the unit quaternion (normalised here so drift does not scale vectors).
     const T n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3;
     const T inv_n2 = 1.0 / n2;
-    const T c11 = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * inv_n2, c12 = 2.0 * (q1 * q2 - q0 * q3) * inv_n2,
-            c13 = 2.0 * (q1 * q3 + q0 * q2) * inv_n2;
-    const T c21 = 2.0 * (q1 * q2 + q0 * q3) * inv_n2, c22 = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * inv_n2,
+    const T c11 = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * inv_n2,
+            c12 = 2.0 * (q1 * q2 - q0 * q3) * inv_n2, c13 = 2.0 * (q1 * q3 + q0 * q2) * inv_n2;
+    const T c21 = 2.0 * (q1 * q2 + q0 * q3) * inv_n2,
+            c22 = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * inv_n2,
             c23 = 2.0 * (q2 * q3 - q0 * q1) * inv_n2;
     const T c31 = 2.0 * (q1 * q3 - q0 * q2) * inv_n2, c32 = 2.0 * (q2 * q3 + q0 * q1) * inv_n2,
             c33 = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * inv_n2;
@@ -393,9 +407,11 @@ struct FlightOutputs {
     double nz = 0.0;  ///< load factor: -(aero + thrust z force) / (m g), 1 in level flight
     double ny = 0.0;
     double thrust = 0.0;  ///< [N]
-    double CL = 0.0, CD = 0.0, CY = 0.0, Cl = 0.0, Cm = 0.0, Cn = 0.0;  ///< wind forces, body moments (MRP)
+    double CL = 0.0, CD = 0.0, CY = 0.0, Cl = 0.0, Cm = 0.0,
+           Cn = 0.0;                 ///< wind forces, body moments (MRP)
     double flight_path_angle = 0.0;  ///< gamma [rad]
 };
-[[nodiscard]] FlightOutputs outputs(const FlightModel& m, const Loads<double>& loads, const EulerState<double>& s);
+[[nodiscard]] FlightOutputs outputs(const FlightModel& m, const Loads<double>& loads,
+                                    const EulerState<double>& s);
 
 }  // namespace manta::flightdyn

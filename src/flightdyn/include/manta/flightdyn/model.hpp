@@ -29,7 +29,8 @@ struct MassProperties {
     /// Centre of gravity, geometry axes (x aft, y right, z up) [m].
     Eigen::Vector3d cg_geom = Eigen::Vector3d::Zero();
     /// Inertia tensor about the CG in body axes (x fwd, y right, z down) [kg m^2]; Ixz as the
-    /// product of inertia with the sign convention I = [[Ixx,-Ixy,-Ixz],[-Ixy,Iyy,-Iyz],[-Ixz,-Iyz,Izz]].
+    /// product of inertia with the sign convention I =
+    /// [[Ixx,-Ixy,-Ixz],[-Ixy,Iyy,-Iyz],[-Ixz,-Iyz,Izz]].
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();
 };
 
@@ -67,6 +68,8 @@ struct FlightModel {
 };
 
 /// Vector from geometry axes (x aft, y right, z up) to body axes (x fwd, y right, z down).
-[[nodiscard]] inline Eigen::Vector3d body_from_geom(const Eigen::Vector3d& g) { return {-g.x(), g.y(), -g.z()}; }
+[[nodiscard]] inline Eigen::Vector3d body_from_geom(const Eigen::Vector3d& g) {
+    return {-g.x(), g.y(), -g.z()};
+}
 
 }  // namespace manta::flightdyn

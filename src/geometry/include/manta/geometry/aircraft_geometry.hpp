@@ -41,12 +41,12 @@ enum class NacaFamily {
 /// Report 537 for the four- and five-digit sections). All lengths are fractions of the chord.
 struct NacaDesignation {
     NacaFamily family = NacaFamily::four_digit;  ///< which of the three families
-    std::string text;              ///< normalised designation, e.g. "NACA 64(2)-215"
-    double thickness = 0.0;        ///< maximum thickness t/c
-    double max_camber = 0.0;       ///< four-digit: maximum camber m/c
-    double camber_position = 0.0;  ///< four- and five-digit: x/c of maximum camber
-    double design_lift = 0.0;      ///< five-digit and 6-series: design lift coefficient c_li
-    bool reflexed = false;         ///< five-digit: reflexed mean line (third digit 1)
+    std::string text;                            ///< normalised designation, e.g. "NACA 64(2)-215"
+    double thickness = 0.0;                      ///< maximum thickness t/c
+    double max_camber = 0.0;                     ///< four-digit: maximum camber m/c
+    double camber_position = 0.0;                ///< four- and five-digit: x/c of maximum camber
+    double design_lift = 0.0;  ///< five-digit and 6-series: design lift coefficient c_li
+    bool reflexed = false;     ///< five-digit: reflexed mean line (third digit 1)
     /// Five-digit mean-line constants (r: x/c where the two polynomial pieces join; k1; k2/k1),
     /// from NACA Report 537 for c_li = 0.3, already scaled to `design_lift`.
     double r = 0.0, k1 = 0.0, k2_over_k1 = 0.0;
@@ -131,7 +131,7 @@ struct SurfaceSection {
 /// A wing, tailplane or fin. Horizontal surfaces run along +y (spanwise coordinate y) and, if
 /// `symmetric`, are mirrored about y = 0; vertical surfaces run along +z (spanwise coordinate z).
 struct LiftingSurface {
-    std::string name;        ///< unique among the aircraft's surfaces ("wing", "fin", ...)
+    std::string name;       ///< unique among the aircraft's surfaces ("wing", "fin", ...)
     bool symmetric = true;  ///< mirrored about the plane y = 0
     bool vertical = false;  ///< fin: spanwise coordinate is z and the planform lies in x-z
     std::vector<SurfaceSection> sections;  ///< root to tip, spanwise coordinate increasing
@@ -216,8 +216,8 @@ enum class Control { none, elevator, aileron, rudder };
 /// trailing edge down +, left aileron trailing edge down +, rudder trailing edge left +) give
 /// elevator gains (+1, +1), aileron gains right -1 / left +1 and rudder +1.
 struct ControlSurface {
-    std::string name;     ///< unique among the control surfaces
-    std::string surface;  ///< name of the lifting surface it belongs to
+    std::string name;                 ///< unique among the control surfaces
+    std::string surface;              ///< name of the lifting surface it belongs to
     Control control = Control::none;  ///< the global control that drives it (none: not driven)
     /// Inboard and outboard ends as fractions of the surface's semi-span (0 root, 1 tip).
     std::array<double, 2> span_fraction{0.0, 1.0};
@@ -246,7 +246,7 @@ struct AircraftGeometry {
         0.0;  ///< overall length [m] (every surface point lies within [0, length] in x, 1 % slack)
     double height = 0.0;  ///< overall height [m] (documentation; not checked against the parts)
     std::vector<LiftingSurface> surfaces;          ///< wings, tailplanes, fins; names unique
-    Fuselage fuselage;                              ///< empty if none was given
+    Fuselage fuselage;                             ///< empty if none was given
     std::vector<ControlSurface> control_surfaces;  ///< each on one of `surfaces`
 
     /// Surface by name, or nullptr.
