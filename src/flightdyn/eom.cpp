@@ -11,15 +11,18 @@ namespace manta::flightdyn {
 
 void finalize(FlightModel& model) {
     model.angle_rate_terms = false;
+    model.alpha_dot_terms = false;
+    model.beta_dot_terms = false;
     if (model.aero) {
         for (const auto& t : model.aero->tables()) {
             if (t.kind != aero::TableKind::dynamic) continue;
             for (const auto& c : t.columns) {
-                if (c.ends_with("_alphadot") || c.ends_with("_betadot"))
-                    model.angle_rate_terms = true;
+                if (c.ends_with("_alphadot")) model.alpha_dot_terms = true;
+                if (c.ends_with("_betadot")) model.beta_dot_terms = true;
             }
         }
     }
+    model.angle_rate_terms = model.alpha_dot_terms || model.beta_dot_terms;
     validate(model);
 }
 

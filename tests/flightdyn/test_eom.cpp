@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "manta/aircraft/aircraft.hpp"
 #include "manta/core/autodiff.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/eom.hpp"
@@ -324,4 +325,47 @@ TEST(AutomaticDerivatives, EulerRhsMatchesFiniteDifferencesWithoutAero) {
 TEST(AutomaticDerivatives, EulerRhsMatchesFiniteDifferencesWithAeroTables) {
     const auto m = manta::test::ranger_like();
     expect_ad_matches_fd(m, general_state(), general_controls());
+}
+
+// The alpha-dot terms make the equations implicit; euler_rhs solves them exactly. The loads it
+// returns must equal the table value at the alpha-dot it returns (fixed point), and the Ranger,
+// whose tables have alpha-dot but no beta-dot columns, must be flagged accordingly.
+TEST(EomAngleRates, AlphaDotSolveIsAFixedPoint) {
+    const auto ac = manta::aircraft::load_aircraft(std::string(MANTA_SOURCE_DIR) +
+                                                   "/examples/ranger2000/aircraft.yaml");
+    const fd::FlightModel m = ac.flight_model();
+    ASSERT_TRUE(m.alpha_dot_terms);
+    ASSERT_FALSE(m.beta_dot_terms);
+    fd::EulerState<double> s = fd::EulerState<double>::Zero();
+    s[fd::euler::z] = -3000.0;
+    s[fd::euler::V] = 140.0;
+    s[fd::euler::alpha] = 0.08;
+    s[fd::euler::beta] = 0.03;
+    s[fd::euler::theta] = 0.1;
+    s[fd::euler::phi] = 0.3;
+    s[fd::euler::q] = 0.2;
+    s[fd::euler::p] = -0.1;
+    fd::Controls<double> u;
+    u.elevator = -0.05;
+    u.throttle = 0.6;
+    fd::Loads<double> L;
+    const auto d = fd::euler_rhs(m, s, u, &L);
+    const double V = s[fd::euler::V], b = m.reference.span, c = m.reference.chord;
+    manta::aero::AeroQuery<double> q;
+    q.alpha = s[fd::euler::alpha];
+    q.beta = s[fd::euler::beta];
+    q.mach = L.mach;
+    q.p_hat = s[fd::euler::p] * b / (2 * V);
+    q.q_hat = s[fd::euler::q] * c / (2 * V);
+    q.r_hat = s[fd::euler::r] * b / (2 * V);
+    q.alpha_dot_hat = d[fd::euler::alpha] * c / (2 * V);
+    q.beta_dot_hat = d[fd::euler::beta] * b / (2 * V);
+    q.elevator = u.elevator;
+    const auto C = m.aero->evaluate(q, m.interpolation);
+    EXPECT_NEAR(L.coefficients.CZ, C.CZ, 1e-12);
+    EXPECT_NEAR(L.coefficients.Cm, C.Cm, 1e-12);
+    EXPECT_NEAR(L.coefficients.CX, C.CX, 1e-12);
+    // And the alpha-dot term is not negligible here, so the check has teeth.
+    q.alpha_dot_hat = 0.0;
+    EXPECT_GT(std::abs(m.aero->evaluate(q, m.interpolation).Cm - C.Cm), 1e-6);
 }

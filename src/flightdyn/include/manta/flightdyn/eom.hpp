@@ -248,13 +248,27 @@ template <class T>
     if (!m.angle_rate_terms || !m.aero || !(core::value_of(airspeed) > 1e-9) || !(uw2 > 1e-18))
         return L;
     const T one = zero + 1.0;
-    Loads<T> La = base, Lb = base;
-    add_aero_loads(m, La, w, u, one, zero);
-    add_aero_loads(m, Lb, w, u, zero, one);
+    // One extra table pass per angle rate the tables use: the Ranger's alpha-dot terms alone cost
+    // one; a model with no beta-dot columns leaves Lb = L (its column of K is zero).
+    Loads<T> La = L, Lb = L;
+    if (m.alpha_dot_terms) {
+        La = base;
+        add_aero_loads(m, La, w, u, one, zero);
+    }
+    if (m.beta_dot_terms) {
+        Lb = base;
+        add_aero_loads(m, Lb, w, u, zero, one);
+    }
     T a0, b0, a1, b1, a2, b2;
     angle_rates(v_body, velocity_rate(m, L.force_body, gravity_body, v_body, w), a0, b0);
-    angle_rates(v_body, velocity_rate(m, La.force_body, gravity_body, v_body, w), a1, b1);
-    angle_rates(v_body, velocity_rate(m, Lb.force_body, gravity_body, v_body, w), a2, b2);
+    a1 = a0;
+    b1 = b0;
+    a2 = a0;
+    b2 = b0;
+    if (m.alpha_dot_terms)
+        angle_rates(v_body, velocity_rate(m, La.force_body, gravity_body, v_body, w), a1, b1);
+    if (m.beta_dot_terms)
+        angle_rates(v_body, velocity_rate(m, Lb.force_body, gravity_body, v_body, w), a2, b2);
     // (I - K) x = f0 with K = [[a1 - a0, a2 - a0], [b1 - b0, b2 - b0]].
     const T k11 = 1.0 - (a1 - a0), k12 = -(a2 - a0), k21 = -(b1 - b0), k22 = 1.0 - (b2 - b0);
     const T det = k11 * k22 - k12 * k21;

@@ -65,6 +65,8 @@ struct FlightModel {
     /// True when the aero tables carry alpha-dot or beta-dot columns (set by flightdyn::finalize);
     /// the equations of motion then solve the implicit angle-rate dependence exactly.
     bool angle_rate_terms = false;
+    bool alpha_dot_terms = false;  ///< tables have alpha-dot columns (set by finalize)
+    bool beta_dot_terms = false;   ///< tables have beta-dot columns (set by finalize)
 };
 
 /// Vector from geometry axes (x aft, y right, z up) to body axes (x fwd, y right, z down).
