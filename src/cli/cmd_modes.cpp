@@ -21,10 +21,8 @@ nlohmann::json trim_json(const flightdyn::TrimResult& r);
 namespace {
 
 struct ModesArgs {
-    std::string aircraft;
-    double speed = 0.0;
-    double altitude = 0.0;
-    std::string mass_case;
+    AircraftOptions ac;
+    FlightCondition fc;
     bool json = false;
 };
 
@@ -82,23 +80,16 @@ void add_modes(CLI::App& app, Action& action) {
         "eigenvalue, natural frequency, damping ratio, period and time to half or double "
         "amplitude.");
     auto a = std::make_shared<ModesArgs>();
-    cmd->add_option("--aircraft", a->aircraft, "Aircraft file (YAML)")
-        ->required()
-        ->check(CLI::ExistingFile);
-    cmd->add_option("--speed", a->speed, "True airspeed [m/s]")->required();
-    cmd->add_option("--altitude", a->altitude,
-                    "Altitude [m] (geometric, US Standard Atmosphere 1976)")
-        ->required();
-    cmd->add_option("--mass-case", a->mass_case,
-                    "Mass case of the aircraft file (default: its default case)");
+    add_aircraft_options(cmd, a->ac);
+    add_required_flight_condition(cmd, a->fc);
     cmd->add_flag("--json", a->json, "Print one JSON object (SI units and radians)");
     cmd->callback([a, &action] {
         action = [a]() -> int {
-            const auto def = aircraft::load_aircraft(a->aircraft);
-            const flightdyn::FlightModel model = def.flight_model(a->mass_case);
+            const auto def = aircraft::load_aircraft(a->ac.aircraft);
+            const flightdyn::FlightModel model = def.flight_model(a->ac.mass_case);
             flightdyn::TrimTarget target;
-            target.airspeed = a->speed;
-            target.altitude = a->altitude;
+            target.airspeed = a->fc.speed;
+            target.altitude = a->fc.altitude;
             const flightdyn::TrimResult tr = flightdyn::trim(model, target);
             const flightdyn::LinearModel lin = flightdyn::linearise(model, tr.state, tr.controls);
             const flightdyn::ModesResult modes = flightdyn::analyse_modes(lin);

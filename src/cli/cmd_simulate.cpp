@@ -21,12 +21,11 @@ namespace manta::cli {
 namespace {
 
 struct SimulateArgs {
-    std::string aircraft;
+    AircraftOptions ac;
     std::string inputs;
     double duration = 0.0;
     double speed = 150.0;
     double altitude = 3000.0;
-    std::string mass_case;
     double dt = 0.01;
     double output_interval = 0.0;
     std::string integrator = "rk4";
@@ -119,9 +118,7 @@ void add_simulate(CLI::App& app, Action& action) {
         "Exit 1 if no trim exists or the state becomes NaN/Inf (the partial trajectory is saved),\n"
         "2 on bad input. Formats: docs/flight-dynamics.md.");
     auto a = std::make_shared<SimulateArgs>();
-    cmd->add_option("--aircraft", a->aircraft, "Aircraft file (YAML)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    add_aircraft_options(cmd, a->ac);
     cmd->add_option("--inputs", a->inputs, "Control-input CSV (default: hold the trim controls)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--duration", a->duration, "Simulated time [s]")->required();
@@ -129,8 +126,6 @@ void add_simulate(CLI::App& app, Action& action) {
         ->capture_default_str();
     cmd->add_option("--altitude", a->altitude, "Initial altitude [m] (geometric)")
         ->capture_default_str();
-    cmd->add_option("--mass-case", a->mass_case,
-                    "Mass case of the aircraft file (default: its default case)");
     cmd->add_option("--dt", a->dt, "Time step [s] (rk4 step; dopri5 initial step)")
         ->capture_default_str();
     cmd->add_option("--output-interval", a->output_interval,
@@ -162,8 +157,8 @@ void add_simulate(CLI::App& app, Action& action) {
             opt.atol = a->atol;
             opt.validate();  // bad options fail before the aircraft is read and trimmed
 
-            const auto def = aircraft::load_aircraft(a->aircraft);
-            const flightdyn::FlightModel model = def.flight_model(a->mass_case);
+            const auto def = aircraft::load_aircraft(a->ac.aircraft);
+            const flightdyn::FlightModel model = def.flight_model(a->ac.mass_case);
             flightdyn::TrimTarget target;
             target.airspeed = a->speed;
             target.altitude = a->altitude;

@@ -18,13 +18,11 @@ namespace manta::cli {
 namespace {
 
 struct TrimArgs {
-    std::string aircraft;
-    double speed = 0.0;
-    double altitude = 0.0;
+    AircraftOptions ac;
+    FlightCondition fc;
     std::optional<double> climb_angle_deg;
     std::optional<double> turn_rate_deg_s;
     double heading_deg = 0.0;
-    std::string mass_case;
     bool ignore_limits = false;
     bool json = false;
 };
@@ -71,13 +69,8 @@ void add_trim(CLI::App& app, Action& action) {
         "rates\n"
         "and the residual. Exit 1 if no trim exists (the message says why), 2 on bad input.");
     auto a = std::make_shared<TrimArgs>();
-    cmd->add_option("--aircraft", a->aircraft, "Aircraft file (YAML)")
-        ->required()
-        ->check(CLI::ExistingFile);
-    cmd->add_option("--speed", a->speed, "True airspeed [m/s]")->required();
-    cmd->add_option("--altitude", a->altitude,
-                    "Altitude [m] (geometric, US Standard Atmosphere 1976)")
-        ->required();
+    add_aircraft_options(cmd, a->ac);
+    add_required_flight_condition(cmd, a->fc);
     auto* climb = cmd->add_option("--climb-angle-deg", a->climb_angle_deg,
                                   "Flight-path angle [deg], + climbing (default 0)");
     auto* turn =
@@ -86,19 +79,17 @@ void add_trim(CLI::App& app, Action& action) {
     climb->excludes(turn);
     turn->excludes(climb);
     cmd->add_option("--heading-deg", a->heading_deg, "Heading psi [deg] (default 0)");
-    cmd->add_option("--mass-case", a->mass_case,
-                    "Mass case of the aircraft file (default: its default case)");
     cmd->add_flag("--ignore-limits", a->ignore_limits,
                   "Report control-limit and table-range violations instead of failing");
     cmd->add_flag("--json", a->json,
                   "Print one JSON object (SI units and radians; *_deg keys in degrees)");
     cmd->callback([a, &action] {
         action = [a]() -> int {
-            const auto def = aircraft::load_aircraft(a->aircraft);
-            const flightdyn::FlightModel model = def.flight_model(a->mass_case);
+            const auto def = aircraft::load_aircraft(a->ac.aircraft);
+            const flightdyn::FlightModel model = def.flight_model(a->ac.mass_case);
             flightdyn::TrimTarget target;
-            target.airspeed = a->speed;
-            target.altitude = a->altitude;
+            target.airspeed = a->fc.speed;
+            target.altitude = a->fc.altitude;
             target.climb_angle = core::deg(a->climb_angle_deg.value_or(0.0));
             target.turn_rate = core::deg(a->turn_rate_deg_s.value_or(0.0));
             target.heading = core::deg(a->heading_deg);

@@ -21,6 +21,22 @@ void add_modes(CLI::App& app, Action& action);
 void add_simulate(CLI::App& app, Action& action);
 void add_demo(CLI::App& app, Action& action);
 
+/// Options every aircraft command shares: the aircraft file and its loading case.
+struct AircraftOptions {
+    std::string aircraft;   ///< --aircraft FILE (required, must exist)
+    std::string mass_case;  ///< --mass-case NAME ("" = the file's default case)
+};
+/// Add --aircraft and --mass-case to `cmd`.
+void add_aircraft_options(CLI::App* cmd, AircraftOptions& o);
+
+/// A level-flight condition given on the command line.
+struct FlightCondition {
+    double speed = 0.0;     ///< --speed [m/s], true airspeed
+    double altitude = 0.0;  ///< --altitude [m], geometric
+};
+/// Add --speed and --altitude to `cmd`, both required.
+void add_required_flight_condition(CLI::App* cmd, FlightCondition& c);
+
 /// Print a JSON object on stdout (one object, 2-space indented).
 void print_json(const nlohmann::json& j);
 

@@ -17,6 +17,21 @@ void print_json(const nlohmann::json& j) {
     std::cout << j.dump(2) << '\n';
 }
 
+void add_aircraft_options(CLI::App* cmd, AircraftOptions& o) {
+    cmd->add_option("--aircraft", o.aircraft, "Aircraft file (YAML)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--mass-case", o.mass_case,
+                    "Mass case of the aircraft file (default: its default case)");
+}
+
+void add_required_flight_condition(CLI::App* cmd, FlightCondition& c) {
+    cmd->add_option("--speed", c.speed, "True airspeed [m/s]")->required();
+    cmd->add_option("--altitude", c.altitude,
+                    "Altitude [m] (geometric, US Standard Atmosphere 1976)")
+        ->required();
+}
+
 }  // namespace manta::cli
 
 int main(int argc, char** argv) {
