@@ -1,0 +1,54 @@
+#pragma once
+/// @file source.hpp
+/// The vortex-lattice method as an `aero::AeroSource`: steady coefficients at any flight state
+/// and control setting (solvers cached per Mach number: one influence matrix and factorisation
+/// each), the viscous drag build-up added when the aircraft's shape is known and a Reynolds
+/// number is given, and the unsteady lattice along a motion.
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "manta/aero/source.hpp"
+#include "manta/geometry/aircraft_geometry.hpp"
+#include "manta/vlm/lattice.hpp"
+#include "manta/vlm/model.hpp"
+#include "manta/vlm/steady.hpp"
+#include "manta/vlm/viscous.hpp"
+
+namespace manta::vlm {
+
+class VlmSource : public aero::AeroSource {
+public:
+    /// `geometry`, if given, feeds the viscous build-up (else only Model::profile_drag is added).
+    explicit VlmSource(Model model, std::optional<geometry::AircraftGeometry> geometry = {},
+                       ViscousDragOptions viscous = {});
+
+    [[nodiscard]] std::string name() const override { return "vlm"; }
+    [[nodiscard]] std::string fingerprint() const override;
+    [[nodiscard]] aero::SourceResult evaluate(const aero::AeroQuery<double>& q,
+                                              const aero::FlowConditions& c) const override;
+
+    [[nodiscard]] const Model& model() const { return model_; }
+    [[nodiscard]] const Lattice& lattice() const { return lattice_; }
+    /// The solver at Mach `mach` (built on first use, then cached).
+    [[nodiscard]] std::shared_ptr<const SteadySolver> solver(double mach) const;
+    /// Flow state of a query: the elevator, aileron and rudder values set on the lattice controls
+    /// of those names (others zero).
+    [[nodiscard]] FlowState flow_state(const aero::AeroQuery<double>& q) const;
+    /// Viscous drag at Mach `mach` and Re/l (nullopt without a geometry or with Re/l = 0).
+    [[nodiscard]] std::optional<ViscousDrag> viscous(double mach, double reynolds_per_metre) const;
+
+private:
+    Model model_;
+    Lattice lattice_;
+    std::optional<geometry::AircraftGeometry> geometry_;
+    ViscousDragOptions viscous_options_;
+    std::string fingerprint_;
+    mutable std::mutex mutex_;
+    mutable std::map<double, std::shared_ptr<const SteadySolver>> solvers_;
+};
+
+}  // namespace manta::vlm

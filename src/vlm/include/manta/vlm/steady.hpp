@@ -1,0 +1,128 @@
+#pragma once
+/// @file steady.hpp
+/// Steady vortex-lattice solution, forces and stability derivatives.
+///
+/// Boundary condition: flow tangency at every control point, (V_inf - omega x r + v_ind) . n = 0,
+/// with the induced velocity normal to the undeflected (cambered) panel and the control
+/// deflections rotating the normals of the free-stream term (the small-disturbance form of
+/// classical vortex-lattice codes). Compressibility by the Prandtl-Glauert transformation: the
+/// lattice is stretched by 1/beta in x, beta = sqrt(1 - M^2), and the induced x velocity is
+/// divided by beta. Forces by the Kutta-Joukowski law on every bound segment with the local
+/// velocity (free stream, rotation and the velocity induced by every horseshoe); induced drag
+/// also in the Trefftz plane. The circulation is linear in the free-stream and rotation
+/// components, so six unit solutions (u, v, w, p, q, r) per deflection state give the loads at
+/// any (alpha, beta, p, q, r) by sums over the panels, and derivatives by differences of those
+/// sums are consistent with the discrete solution.
+///
+/// Axes: the lattice is in geometry axes (x aft, y right, z up); results are the flight-mechanics
+/// coefficients of aero/types.hpp (body axes x forward, y right, z down; wind-axis CL CD CY),
+/// moments about the model's reference point, rates non-dimensional (p b/2V, q c/2V, r b/2V).
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "manta/aero/types.hpp"
+#include "manta/vlm/lattice.hpp"
+#include "manta/vlm/model.hpp"
+
+namespace manta::vlm {
+
+/// A flight state for the steady solver. Rates are body-axis, non-dimensional.
+struct FlowState {
+    double alpha = 0.0;  ///< [rad]
+    double beta = 0.0;   ///< [rad]
+    double p_hat = 0.0, q_hat = 0.0, r_hat = 0.0;
+    /// Value of each lattice control (Lattice::control_names order) [rad]; empty: all zero.
+    Eigen::VectorXd deflection;
+};
+
+/// Loads of one strip (for span-loading output).
+struct StripLoad {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< geometry axes, per unit q (F / q)
+    double circulation = 0.0;                         ///< sum over the strip, per unit V
+    double cl = 0.0;                                  ///< section lift coefficient (normal force)
+};
+
+/// Result of a steady solution.
+struct SteadyResult {
+    aero::BodyCoefficients<double> body;  ///< CX CY CZ (body), Cl Cm Cn (body, about the MRP)
+    double CL = 0.0, CD = 0.0, CY = 0.0;  ///< wind axes, CD = CD_induced + CD_profile
+    double CD_induced = 0.0;              ///< induced drag: the Trefftz-plane value
+    double CD_near_field = 0.0;           ///< induced drag by Kutta-Joukowski on the bound segments
+    double CD_trefftz = 0.0;              ///< Trefftz plane
+    double CL_trefftz = 0.0;
+    /// Profile (viscous) drag: Model::profile_drag plus what add_profile_drag added.
+    double CD_profile = 0.0;
+    double span_efficiency = 0.0;  ///< CL_trefftz^2 / (pi AR CD_trefftz), AR = b^2 / S
+    Eigen::VectorXd gamma;         ///< circulation of every horseshoe per unit free-stream speed
+    std::vector<StripLoad> strips;
+};
+
+/// Stability and control derivatives at a state: per radian for angles and deflections, per
+/// non-dimensional rate for p q r. Two sets: body axes (the flight model's) and stability axes
+/// (body axes rotated by alpha about y; the set vortex-lattice codes usually print).
+struct Derivatives {
+    /// d{CL CD CY Cl Cm Cn}/d{alpha beta p q r}: rows coefficient, columns variable.
+    Eigen::Matrix<double, 6, 5> body;
+    Eigen::Matrix<double, 6, 5> stability;  ///< Cl Cm Cn about stability axes, rates likewise
+    /// d{CL CD CY Cl Cm Cn}/d control, one column per lattice control (body-axis moments), and
+    /// the stability-axis moments.
+    Eigen::Matrix<double, 6, Eigen::Dynamic> control;
+    Eigen::Matrix<double, 6, Eigen::Dynamic> control_stability;
+    double x_neutral_point = 0.0;  ///< geometry x of the neutral point [m]
+    double static_margin = 0.0;    ///< (x_np - x_ref) / c_ref
+    SteadyResult state;            ///< the solution at the state itself
+};
+
+/// The solver for one lattice and Mach number: influence matrix built and factorised once.
+class SteadySolver {
+public:
+    /// InputError for Mach outside [0, 0.95) or a lattice check failure.
+    SteadySolver(const Model& model, Lattice lattice, double mach);
+
+    [[nodiscard]] const Lattice& lattice() const { return lattice_; }
+    [[nodiscard]] double mach() const { return mach_; }
+
+    [[nodiscard]] SteadyResult solve(const FlowState& state) const;
+    [[nodiscard]] Derivatives derivatives(const FlowState& state) const;
+
+    /// Circulations of the six unit states (u, v, w, p, q, r in geometry axes) at a deflection:
+    /// N x 6. Exposed for the unsteady solver and tests.
+    [[nodiscard]] Eigen::MatrixXd unit_circulations(const Eigen::VectorXd& deflection) const;
+
+private:
+    struct Units;
+    [[nodiscard]] Units units(const Eigen::VectorXd& deflection) const;
+    [[nodiscard]] SteadyResult loads(const Units& u, const FlowState& s, bool with_detail) const;
+    [[nodiscard]] SteadyResult loads_from(const Eigen::VectorXd& g, const Eigen::VectorXd& vind,
+                                          const FlowState& s, bool with_detail) const;
+    [[nodiscard]] Eigen::MatrixXd induced_at_bound(const Eigen::MatrixXd& gamma) const;
+    [[nodiscard]] Eigen::VectorXd rhs(const Eigen::VectorXd& deflection, const Eigen::Vector3d& v,
+                                      const Eigen::Vector3d& w) const;
+
+    Model model_;
+    Lattice lattice_;
+    double mach_ = 0.0;
+    double beta_pg_ = 1.0;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+    // Trefftz plane: normal wash at strip centres per unit strip circulation.
+    Eigen::MatrixXd trefftz_;
+    std::vector<Eigen::Vector3d> mid_;  // bound-segment midpoints
+};
+
+/// Set the wind-axis forces of a result and its body-axis forces to match.
+void set_wind_forces(SteadyResult& r, double CL, double CD, double CY, double alpha, double beta);
+/// Add a profile-drag coefficient (along the free stream) to a result: CD, CD_profile and the
+/// body-axis forces change, lift and moments do not.
+void add_profile_drag(SteadyResult& r, double CD0, double alpha, double beta);
+
+/// Free-stream velocity of the air relative to the aircraft in geometry axes, unit speed.
+[[nodiscard]] Eigen::Vector3d freestream_geometry(double alpha, double beta);
+/// Body rates [rad/s per unit speed] -> geometry-axis angular velocity.
+[[nodiscard]] Eigen::Vector3d omega_geometry(const Reference& ref, double p_hat, double q_hat,
+                                             double r_hat);
+
+}  // namespace manta::vlm

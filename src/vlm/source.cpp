@@ -1,0 +1,127 @@
+#include "manta/vlm/source.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include "manta/core/version.hpp"
+
+namespace manta::vlm {
+
+namespace {
+
+/// FNV-1a over the bytes of every number that defines the lattice and the options.
+struct Hasher {
+    std::uint64_t h = 1469598103934665603ULL;
+    void bytes(const void* p, std::size_t n) {
+        const auto* c = static_cast<const unsigned char*>(p);
+        for (std::size_t i = 0; i < n; ++i) {
+            h ^= c[i];
+            h *= 1099511628211ULL;
+        }
+    }
+    void num(double x) { bytes(&x, sizeof x); }
+    void vec(const Eigen::Vector3d& v) {
+        num(v.x());
+        num(v.y());
+        num(v.z());
+    }
+    void str(const std::string& s) { bytes(s.data(), s.size()); }
+};
+
+}  // namespace
+
+VlmSource::VlmSource(Model model, std::optional<geometry::AircraftGeometry> geometry,
+                     ViscousDragOptions viscous)
+    : model_(std::move(model)),
+      lattice_(build_lattice(model_)),
+      geometry_(std::move(geometry)),
+      viscous_options_(std::move(viscous)) {
+    check_lattice(model_, lattice_);
+    Hasher h;
+    h.str(core::version());
+    h.num(model_.reference.area);
+    h.num(model_.reference.span);
+    h.num(model_.reference.chord);
+    h.vec(model_.reference.point);
+    h.num(model_.profile_drag);
+    for (int i = 0; i < lattice_.size(); ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        h.vec(lattice_.a[k]);
+        h.vec(lattice_.b[k]);
+        h.vec(lattice_.control_point[k]);
+        h.vec(lattice_.normal[k]);
+        for (const auto& c : lattice_.controls[k]) {
+            h.num(c.control);
+            h.num(c.gain);
+            h.vec(c.axis);
+        }
+    }
+    for (const auto& n : lattice_.control_names) h.str(n);
+    h.num(geometry_ ? 1.0 : 0.0);
+    h.num(viscous_options_.laminar_fraction_surfaces);
+    h.num(viscous_options_.laminar_fraction_fuselage);
+    h.num(viscous_options_.interference_wing);
+    h.num(viscous_options_.interference_tail);
+    h.num(viscous_options_.interference_fuselage);
+    h.num(viscous_options_.leakage_protuberance_fraction);
+    fingerprint_ = fmt::format("vlm:{:016x}:{}", h.h, lattice_.size());
+}
+
+std::string VlmSource::fingerprint() const {
+    return fingerprint_;
+}
+
+std::shared_ptr<const SteadySolver> VlmSource::solver(double mach) const {
+    {
+        const std::lock_guard lock(mutex_);
+        const auto it = solvers_.find(mach);
+        if (it != solvers_.end()) return it->second;
+    }
+    // Built outside the lock (seconds for large lattices); a concurrent duplicate is harmless.
+    auto s = std::make_shared<const SteadySolver>(model_, lattice_, mach);
+    const std::lock_guard lock(mutex_);
+    if (solvers_.size() >= 16) solvers_.erase(solvers_.begin());
+    return solvers_.emplace(mach, std::move(s)).first->second;
+}
+
+FlowState VlmSource::flow_state(const aero::AeroQuery<double>& q) const {
+    FlowState s;
+    s.alpha = q.alpha;
+    s.beta = q.beta;
+    s.p_hat = q.p_hat;
+    s.q_hat = q.q_hat;
+    s.r_hat = q.r_hat;
+    s.deflection = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(lattice_.control_names.size()));
+    auto set = [&](const char* name, double v) {
+        const int k = lattice_.control_index(name);
+        if (k >= 0) s.deflection[k] = v;
+    };
+    set("elevator", q.elevator);
+    set("aileron", q.aileron);
+    set("rudder", q.rudder);
+    return s;
+}
+
+std::optional<ViscousDrag> VlmSource::viscous(double mach, double reynolds_per_metre) const {
+    if (!geometry_ || !(reynolds_per_metre > 0.0)) return std::nullopt;
+    return viscous_drag(*geometry_, model_.reference.area, mach, reynolds_per_metre,
+                        viscous_options_);
+}
+
+aero::SourceResult VlmSource::evaluate(const aero::AeroQuery<double>& q,
+                                       const aero::FlowConditions& c) const {
+    const FlowState s = flow_state(q);
+    SteadyResult r = solver(q.mach)->solve(s);
+    if (const auto v = viscous(q.mach, c.reynolds_per_metre))
+        add_profile_drag(r, v->cd0, s.alpha, s.beta);
+    aero::SourceResult out;
+    out.body = r.body;
+    out.wind = {r.CL, r.CD, r.CY};
+    out.CD_induced = r.CD_induced;
+    out.CD_profile = r.CD_profile;
+    return out;
+}
+
+}  // namespace manta::vlm
