@@ -7,7 +7,11 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+
+#include "manta/geometry/aircraft_geometry.hpp"
+#include "manta/vlm/model.hpp"
 
 namespace manta::cli {
 
@@ -20,6 +24,7 @@ void add_trim(CLI::App& app, Action& action);
 void add_modes(CLI::App& app, Action& action);
 void add_simulate(CLI::App& app, Action& action);
 void add_demo(CLI::App& app, Action& action);
+void add_vlm(CLI::App& app, Action& action);
 
 /// Options every aircraft command shares: the aircraft file and its loading case.
 struct AircraftOptions {
@@ -36,6 +41,16 @@ struct FlightCondition {
 };
 /// Add --speed and --altitude to `cmd`, both required.
 void add_required_flight_condition(CLI::App* cmd, FlightCondition& c);
+
+/// A vortex-lattice model read from a MANTA aircraft file (YAML, with its shape for the viscous
+/// drag) or an AVL geometry file (`.avl`, by extension).
+struct VlmInput {
+    vlm::Model model;
+    std::optional<geometry::AircraftGeometry> geometry;  ///< MANTA files only
+    std::string label;                                   ///< which kind of file
+    double default_mach = 0.0;                           ///< the AVL header's Mach, else 0
+};
+[[nodiscard]] VlmInput load_vlm_input(const std::string& file, const vlm::LatticeDensity& density);
 
 /// Print a JSON object on stdout (one object, 2-space indented).
 void print_json(const nlohmann::json& j);

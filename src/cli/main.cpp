@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
     cli::add_modes(app, action);
     cli::add_simulate(app, action);
     cli::add_demo(app, action);
+    cli::add_vlm(app, action);
 
     try {
         app.parse(argc, argv);

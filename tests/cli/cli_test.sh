@@ -38,7 +38,7 @@ check "manta --help" 0 "$manta" --help
 contains "help lists subcommands" "$work/out.txt" "atmosphere"
 check "manta --version" 0 "$manta" --version
 contains "version text" "$work/out.txt" "manta [0-9]+\.[0-9]+\.[0-9]+"
-for sub in atmosphere "config check" trim modes simulate demo; do
+for sub in atmosphere "config check" trim modes simulate demo vlm; do
     # shellcheck disable=SC2086
     check "manta $sub --help" 0 "$manta" $sub --help
 done
@@ -88,6 +88,24 @@ check "simulate duplicated time" 2 "$manta" simulate --aircraft "$ranger" --inpu
 contains "duplicated time names line" "$work/err.txt" "bad_inputs.csv:4"
 printf 't,elevator_deg\n0,0\n1,nan\n' > "$work/nan_inputs.csv"
 check "simulate NaN input" 2 "$manta" simulate --aircraft "$ranger" --inputs "$work/nan_inputs.csv" --duration 5 --out "$work/t3.csv"
+
+# vlm (coarse lattice: the check is of the command, not of the solver)
+check "vlm ranger json" 0 "$manta" vlm --aircraft "$ranger" --alpha-deg 2 --mach 0.3 --altitude 3000 --n-chord 4 --strip-width 0.05 --json --span-csv "$work/span.csv" --vtu "$work/panels.vtu"
+json_ok "vlm json"
+contains "vlm derivatives" "$work/out.txt" '"static_margin"'
+contains "vlm viscous part" "$work/out.txt" '"CD_profile"'
+contains "span loading header" "$work/span.csv" "^surface,mirrored,y,z,chord,width,cl"
+contains "vtu" "$work/panels.vtu" "UnstructuredGrid"
+check "vlm unknown control" 2 "$manta" vlm --aircraft "$ranger" --n-chord 2 --strip-width 0.1 --mach 0.3 --control flap=5
+contains "unknown control named" "$work/err.txt" "control 'flap' is not on this aircraft"
+check "vlm bad control syntax" 2 "$manta" vlm --aircraft "$ranger" --n-chord 2 --strip-width 0.1 --mach 0.3 --control flap:5
+check "vlm supersonic" 2 "$manta" vlm --aircraft "$ranger" --mach 1.2
+printf 'Plate\n0.0\n0 0 0.0\n4.0 1.0 4.0\n0.25 0 0\nSURFACE\nWing\n4 1.0 8 1.0\nYDUPLICATE\n0.0\nSECTION\n0 0 0 1 0\nSECTION\n0 2 0 1 0\n' > "$work/plate.avl"
+check "vlm avl file" 0 "$manta" vlm --aircraft "$work/plate.avl" --alpha-deg 4 --json
+json_ok "vlm avl json"
+printf 'Plate\n0.0\n0 0 0.0\n4.0 1.0 4.0\n0.25 0 0\nSURFACE\nWing\n4 1.0 8 1.0\nSECTION\n0 0 0 -1 0\nSECTION\n0 2 0 1 0\n' > "$work/bad.avl"
+check "vlm bad avl chord" 2 "$manta" vlm --aircraft "$work/bad.avl"
+contains "bad chord names file and line" "$work/err.txt" "bad.avl:[0-9]+"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
