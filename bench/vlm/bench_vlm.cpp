@@ -1,0 +1,56 @@
+// Vortex-lattice benchmarks: the steady solution with every stability and control derivative
+// (influence matrix, factorisation, unit solutions, differences) for the Ranger 2000 lattice of
+// the default density (~2 000 vortices) and for AVL's b737 sample (1 505 vortices).
+//
+//   build/bench/vlm/bench_vlm --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//
+// The project's target is under 50 ms per case on one core (issue 3).
+
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "manta/aircraft/aircraft.hpp"
+#include "manta/vlm/avl_reader.hpp"
+#include "manta/vlm/steady.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace manta;
+
+vlm::Model ranger() {
+    const auto def = aircraft::load_aircraft(fs::path(MANTA_SOURCE_DIR) / "examples" / "ranger2000" /
+                                             "aircraft.yaml");
+    vlm::Reference ref{def.reference.area, def.reference.span, def.reference.chord,
+                       def.moment_reference_geom};
+    return vlm::from_geometry(def.geometry, ref, {}, def.name);
+}
+
+void run(benchmark::State& state, const vlm::Model& m, double mach, double alpha) {
+    const vlm::Lattice lattice = vlm::build_lattice(m);
+    vlm::FlowState s;
+    s.alpha = alpha;
+    for (auto _ : state) {
+        const vlm::SteadySolver solver(m, lattice, mach);
+        benchmark::DoNotOptimize(solver.derivatives(s));
+    }
+    state.counters["vortices"] = lattice.size();
+}
+
+void BM_ranger_steady_and_derivatives(benchmark::State& state) {
+    run(state, ranger(), 0.3, 0.035);
+}
+BENCHMARK(BM_ranger_steady_and_derivatives)->Unit(benchmark::kMillisecond);
+
+void BM_b737_steady_and_derivatives(benchmark::State& state) {
+    const fs::path file = fs::path(MANTA_SHARED_DIR) / "reference" / "avl" / "samples" / "b737.avl";
+    if (!fs::exists(file)) {
+        state.SkipWithError("no AVL reference data");
+        return;
+    }
+    run(state, vlm::read_avl(file), 0.7, 0.0335);
+}
+BENCHMARK(BM_b737_steady_and_derivatives)->Unit(benchmark::kMillisecond);
+
+}  // namespace
