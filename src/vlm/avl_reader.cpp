@@ -872,11 +872,15 @@ private:
                      fmt::format("Sspace = {:g}; expected a spacing parameter in [-3, 3]",
                                  sec.span_spacing));
         }
+        s.surface.section_scale = s.scale;
         for (auto& p : s.sections) {
             Section sec = std::move(p.section);
             sec.leading_edge = s.scale.cwiseProduct(sec.leading_edge) + s.translate;
             sec.chord *= s.scale.x();
             sec.incidence += s.angle;
+            // An explicit hinge vector is given in the section coordinates: scaled with them.
+            for (SectionControl& c : sec.controls)
+                c.hinge_axis = s.scale.cwiseProduct(c.hinge_axis);
             s.surface.sections.push_back(std::move(sec));
         }
         model_.surfaces.push_back(std::move(s.surface));

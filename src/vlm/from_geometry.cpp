@@ -69,6 +69,9 @@ Model from_geometry(const geometry::AircraftGeometry& g, const Reference& refere
         s.n_chord = density.n_chord;
         s.chord_spacing = density.chord_spacing;
         s.n_span = 0;
+        // Each lifting surface is its own component (as AVL numbers surfaces by default), so
+        // the wing's trailing legs seen from the tail get the inter-component core.
+        s.component = static_cast<int>(m.surfaces.size()) + 1;
         if (ls.symmetric) s.y_duplicate = 0.0;
         const double semi = ls.semi_span();
         for (std::size_t k = 0; k < etas.size(); ++k) {

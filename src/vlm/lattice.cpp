@@ -5,6 +5,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <utility>
 
 #include "manta/core/error.hpp"
 
@@ -24,6 +28,9 @@ struct Edge {
     int panel = 0;
     double u = 0.0;
     double s = 0.0;  ///< parameter of the spacing law at this edge
+    /// Panel-local fraction of the control station of the strip that starts at this edge, when
+    /// the distribution fixes it; NaN: the middle of the strip in the spacing parameter.
+    double u_mid = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// How a surface's strips are distributed: over the whole surface by arc length (global) or per
@@ -36,6 +43,7 @@ struct Distribution {
     /// Panel-local fraction of the strip's control-point station: the middle of the strip in
     /// the spacing parameter.
     [[nodiscard]] double u_mid(const Edge& a, const Edge& b) const {
+        if (std::isfinite(a.u_mid)) return a.u_mid;
         const double sm = 0.5 * (a.s + b.s);
         const auto j = static_cast<std::size_t>(a.panel);
         if (global) {
@@ -61,8 +69,17 @@ std::vector<Edge> strip_edges(const Surface& s, Distribution& dist) {
     }
     std::vector<Edge> edges;
     if (s.n_span > 0) {
-        // Whole-surface distribution by spanwise arc length, with the node nearest each interior
-        // section moved onto it so strips never straddle a section.
+        // Whole-surface distribution by spanwise arc length, measured on the sections before
+        // any scaling (Surface::section_scale).
+        auto unscaled = [&](double v, int axis) {
+            const double f = s.section_scale[axis];
+            return f != 0.0 && std::isfinite(f) ? v / std::abs(f) : v;
+        };
+        for (int j = 0; j + 1 < n_sec; ++j) {
+            const Vector3d e = s.sections[static_cast<std::size_t>(j + 1)].leading_edge -
+                               s.sections[static_cast<std::size_t>(j)].leading_edge;
+            d[static_cast<std::size_t>(j)] = std::hypot(unscaled(e.y(), 1), unscaled(e.z(), 2));
+        }
         std::vector<double> cum(static_cast<std::size_t>(n_sec), 0.0);
         for (int j = 1; j < n_sec; ++j)
             cum[static_cast<std::size_t>(j)] =
@@ -74,6 +91,49 @@ std::vector<Edge> strip_edges(const Surface& s, Distribution& dist) {
         dist.d = d;
         std::vector<double> nodes = spacing_fractions(s.n_span, s.span_spacing);
         for (double& x : nodes) x *= total;
+        // AVL's convention: the node nearest each interior section is assigned to it, and the
+        // nodes between two consecutive sections' nodes are stretched linearly so that those
+        // nodes fall exactly on the sections; the control stations (the middle of each strip in
+        // the spacing parameter) are carried by the same stretch. Strips then never straddle a
+        // section and keep the law's grading.
+        {
+            const auto nn = nodes.size();
+            std::vector<std::size_t> loc(static_cast<std::size_t>(n_sec), 0);
+            loc.back() = nn - 1;
+            for (int j = 1; j + 1 < n_sec; ++j) {
+                const double sj = cum[static_cast<std::size_t>(j)];
+                std::size_t k = 0;
+                for (std::size_t m = 1; m < nn; ++m)
+                    if (std::abs(nodes[m] - sj) < std::abs(nodes[k] - sj)) k = m;
+                loc[static_cast<std::size_t>(j)] = k;
+            }
+            bool distinct = true;
+            for (std::size_t j = 1; j < loc.size(); ++j) distinct = distinct && loc[j] > loc[j - 1];
+            if (distinct) {
+                for (int j = 0; j + 1 < n_sec; ++j) {
+                    const auto jj = static_cast<std::size_t>(j);
+                    const std::size_t i0 = loc[jj], i1 = loc[jj + 1];
+                    const double y0 = nodes[i0], y1 = nodes[i1];
+                    const double scale = d[jj] / (y1 - y0);
+                    for (std::size_t k = i0; k <= i1; ++k) {
+                        Edge e{
+                            j,
+                            k == i1 ? 1.0 : std::clamp((nodes[k] - y0) * scale / d[jj], 0.0, 1.0),
+                            static_cast<double>(k) / s.n_span};
+                        if (k < i1) {
+                            const double mid =
+                                total * spacing_law((static_cast<double>(k) + 0.5) / s.n_span,
+                                                    s.span_spacing);
+                            e.u_mid = std::clamp((mid - y0) * scale / d[jj], 0.0, 1.0);
+                        }
+                        edges.push_back(e);
+                    }
+                }
+                return edges;
+            }
+        }
+        // Sections closer together than the nodes (two share a nearest node): the node nearest
+        // each interior section is moved onto it, or a node is added there.
         for (int j = 1; j + 1 < n_sec; ++j) {
             const double sj = cum[static_cast<std::size_t>(j)];
             std::size_t k = 0;
@@ -124,10 +184,206 @@ std::vector<Edge> strip_edges(const Surface& s, Distribution& dist) {
     return edges;
 }
 
-/// Camber slope of a section's mean line at chord fraction x (0 for a flat plate).
-double camber_slope(const Section& s, double x) {
-    return s.airfoil ? s.airfoil->camber_slope(std::clamp(x, 1e-6, 1.0 - 1e-6)) : 0.0;
+/// Cubic spline y(s) through strictly increasing s with parabolic run-out ends (the first and
+/// last intervals are parabolas: equal second derivatives at their two nodes).
+class Spline {
+public:
+    Spline(std::vector<double> s, std::vector<double> y) : s_(std::move(s)), y_(std::move(y)) {
+        const std::size_t n = s_.size();
+        m_.assign(n, 0.0);
+        if (n < 3) return;
+        // Unknowns M_1 .. M_{n-2}; M_0 = M_1 and M_{n-1} = M_{n-2}. Tridiagonal (Thomas).
+        const std::size_t k = n - 2;
+        std::vector<double> lo(k), di(k), up(k), r(k);
+        for (std::size_t i = 1; i + 1 < n; ++i) {
+            const double h0 = s_[i] - s_[i - 1], h1 = s_[i + 1] - s_[i];
+            const std::size_t j = i - 1;
+            lo[j] = h0;
+            di[j] = 2.0 * (h0 + h1);
+            up[j] = h1;
+            r[j] = 6.0 * ((y_[i + 1] - y_[i]) / h1 - (y_[i] - y_[i - 1]) / h0);
+        }
+        di.front() += lo.front();
+        di.back() += up.back();
+        for (std::size_t j = 1; j < k; ++j) {
+            const double f = lo[j] / di[j - 1];
+            di[j] -= f * up[j - 1];
+            r[j] -= f * r[j - 1];
+        }
+        m_[k] = r[k - 1] / di[k - 1];
+        for (std::size_t j = k - 1; j-- > 0;) m_[j + 1] = (r[j] - up[j] * m_[j + 2]) / di[j];
+        m_.front() = m_[1];
+        m_.back() = m_[n - 2];
+    }
+    [[nodiscard]] double value(double t) const { return eval(t, false); }
+    [[nodiscard]] double slope(double t) const { return eval(t, true); }
+
+private:
+    [[nodiscard]] double eval(double t, bool derivative) const {
+        const std::size_t n = s_.size();
+        std::size_t i =
+            static_cast<std::size_t>(std::upper_bound(s_.begin(), s_.end(), t) - s_.begin());
+        i = std::clamp<std::size_t>(i, 1, n - 1) - 1;
+        const double h = s_[i + 1] - s_[i];
+        const double a = (s_[i + 1] - t) / h, b = (t - s_[i]) / h;
+        if (derivative)
+            return (y_[i + 1] - y_[i]) / h +
+                   h / 6.0 * ((1.0 - 3.0 * a * a) * m_[i] + (3.0 * b * b - 1.0) * m_[i + 1]);
+        return a * y_[i] + b * y_[i + 1] +
+               h * h / 6.0 * ((a * a * a - a) * m_[i] + (b * b * b - b) * m_[i + 1]);
+    }
+    std::vector<double> s_, y_, m_;
+};
+
+/// Akima's local cubic interpolation (Akima 1970): the derivative at each node is a weighted
+/// mean of the neighbouring secant slopes, weighted by how much the slopes on the far side
+/// change; two secants beyond each end are extrapolated linearly. Little overshoot, and each
+/// interval depends on six nodes only.
+class Akima {
+public:
+    Akima(std::vector<double> x, std::vector<double> y) : x_(std::move(x)), y_(std::move(y)) {
+        const std::size_t n = x_.size();
+        // Secants m[j + 2] for intervals j = -2 .. n (j = -2, -1, n - 1, n extrapolated).
+        std::vector<double> m(n + 3, 0.0);
+        for (std::size_t j = 0; j + 1 < n; ++j)
+            m[j + 2] = (y_[j + 1] - y_[j]) / (x_[j + 1] - x_[j]);
+        if (n == 2) m[3] = m[2];
+        m[1] = 2.0 * m[2] - m[3];
+        m[0] = 2.0 * m[1] - m[2];
+        m[n + 1] = 2.0 * m[n] - m[n - 1];
+        m[n + 2] = 2.0 * m[n + 1] - m[n];
+        t_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            // Node i lies between secants i - 1 (m[i + 1]) and i (m[i + 2]).
+            const double w_left = std::abs(m[i + 3] - m[i + 2]);
+            const double w_right = std::abs(m[i + 1] - m[i]);
+            t_[i] = w_left + w_right > 0.0
+                        ? (w_left * m[i + 1] + w_right * m[i + 2]) / (w_left + w_right)
+                        : 0.5 * (m[i + 1] + m[i + 2]);
+        }
+    }
+    [[nodiscard]] double value(double x) const { return eval(x, false); }
+    [[nodiscard]] double slope(double x) const { return eval(x, true); }
+
+private:
+    [[nodiscard]] double eval(double x, bool derivative) const {
+        const std::size_t n = x_.size();
+        x = std::clamp(x, x_.front(), x_.back());
+        std::size_t i =
+            static_cast<std::size_t>(std::upper_bound(x_.begin(), x_.end(), x) - x_.begin());
+        i = std::clamp<std::size_t>(i, 1, n - 1) - 1;
+        const double h = x_[i + 1] - x_[i];
+        const double u = (x - x_[i]) / h;
+        // Cubic Hermite between the nodes.
+        if (derivative) {
+            const double d00 = 6.0 * u * u - 6.0 * u, d10 = 3.0 * u * u - 4.0 * u + 1.0;
+            const double d11 = 3.0 * u * u - 2.0 * u;
+            return (d00 * (y_[i] - y_[i + 1])) / h + d10 * t_[i] + d11 * t_[i + 1];
+        }
+        const double h00 = (1.0 + 2.0 * u) * (1.0 - u) * (1.0 - u), h10 = u * (1.0 - u) * (1.0 - u);
+        const double h01 = u * u * (3.0 - 2.0 * u), h11 = u * u * (u - 1.0);
+        return h00 * y_[i] + h10 * h * t_[i] + h01 * y_[i + 1] + h11 * h * t_[i + 1];
+    }
+    std::vector<double> x_, y_, t_;
+};
+
+/// Stations at which a section's mean-line slope is tabulated.
+constexpr int camber_stations = 50;
+
+/// Mean line of a coordinate airfoil at `camber_stations` cosine-spaced chord fractions, as
+/// (x, y) per unit chord. The contour is splined in its arc length; the leading edge is its
+/// leftmost point and the trailing edge the mean of the two end points; x is scaled so these
+/// are 0 and 1 and y by the same factor (the section is not rotated onto its chord line). The
+/// camber at x is the mean of the upper and lower surfaces there.
+std::pair<std::vector<double>, std::vector<double>> camber_line(
+    const std::vector<Eigen::Vector2d>& pts) {
+    std::vector<double> s, x, y;
+    for (const auto& p : pts) {
+        if (!s.empty()) {
+            const double ds = (p - Eigen::Vector2d(x.back(), y.back())).norm();
+            if (!(ds > 1e-12)) continue;  // repeated point
+            s.push_back(s.back() + ds);
+        } else {
+            s.push_back(0.0);
+        }
+        x.push_back(p.x());
+        y.push_back(p.y());
+    }
+    const Spline sx(s, x), sy(s, y);
+    // Leading edge: where dx/ds changes sign next to the leftmost input point.
+    const auto k = static_cast<std::size_t>(std::min_element(x.begin(), x.end()) - x.begin());
+    double lo = s[k == 0 ? 0 : k - 1], hi = s[std::min(k + 1, s.size() - 1)];
+    if (sx.slope(lo) < 0.0 && sx.slope(hi) > 0.0) {
+        for (int it = 0; it < 80; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            (sx.slope(mid) < 0.0 ? lo : hi) = mid;
+        }
+    } else {
+        lo = hi = s[k];
+    }
+    const double s_le = 0.5 * (lo + hi);
+    const double x_le = sx.value(s_le), y_le = sy.value(s_le);
+    const double x_te = 0.5 * (x.front() + x.back());
+    const double scale = 1.0 / (x_te - x_le);
+    // Arc-length position on [a, b] where the contour's x equals xt (x monotone there).
+    auto locate = [&](double a, double b, double xt) {
+        double fa = sx.value(a) - xt;
+        for (int it = 0; it < 80; ++it) {
+            const double mid = 0.5 * (a + b);
+            const double fm = sx.value(mid) - xt;
+            if ((fm < 0.0) == (fa < 0.0)) {
+                a = mid;
+                fa = fm;
+            } else {
+                b = mid;
+            }
+        }
+        return 0.5 * (a + b);
+    };
+    std::vector<double> xc(camber_stations), yc(camber_stations);
+    xc[0] = 0.0;
+    yc[0] = y_le * scale;
+    for (int i = 1; i < camber_stations; ++i) {
+        const double f = 0.5 * (1.0 - std::cos(std::numbers::pi * i / (camber_stations - 1)));
+        const double xt = x_le + f * (x_te - x_le);
+        // The search runs a little beyond each end (on the spline's end cubics): the trailing
+        // edge x is the mean of the two end points, so one surface stops short of it.
+        const double ext = 0.02 * (s.back() - s.front());
+        const double yu = sy.value(locate(s.front() - ext, s_le, xt));
+        const double yl = sy.value(locate(s_le, s.back() + ext, xt));
+        xc[static_cast<std::size_t>(i)] = f;
+        yc[static_cast<std::size_t>(i)] = 0.5 * (yu + yl) * scale;
+    }
+    return {xc, yc};
 }
+
+/// Mean-line slope of a section, tabulated at `camber_stations` equally spaced chord fractions
+/// and interpolated between them (AVL's convention: the slopes of coordinate and NACA sections
+/// alike are smoothed at this resolution, which fixes in particular how much of the steep slope
+/// near a cambered leading edge the first control points see). None for a flat plate.
+class CamberSlope {
+public:
+    explicit CamberSlope(const Section& sec) {
+        if (!sec.airfoil) return;
+        const geometry::Airfoil& af = *sec.airfoil;
+        std::vector<double> xu(camber_stations), slope(camber_stations);
+        std::optional<Akima> line;
+        if (!af.is_naca()) {
+            auto [xc, yc] = camber_line(af.coordinates());
+            line.emplace(std::move(xc), std::move(yc));
+        }
+        for (int i = 0; i < camber_stations; ++i) {
+            const double x = static_cast<double>(i) / (camber_stations - 1);
+            xu[static_cast<std::size_t>(i)] = x;
+            slope[static_cast<std::size_t>(i)] = line ? line->slope(x) : af.camber_slope(x);
+        }
+        table_.emplace(std::move(xu), std::move(slope));
+    }
+    [[nodiscard]] double operator()(double x) const { return table_ ? table_->value(x) : 0.0; }
+
+private:
+    std::optional<Akima> table_;
+};
 
 /// Rotate v about the unit axis k by angle t (Rodrigues).
 Vector3d rotate(const Vector3d& v, const Vector3d& k, double t) {
@@ -190,6 +446,14 @@ Vector3d Lattice::deflected_normal(int i, const Eigen::VectorXd& deflection) con
     return n;
 }
 
+Vector3d Lattice::linearized_normal(int i, const Eigen::VectorXd& deflection) const {
+    const Vector3d& n0 = normal[static_cast<std::size_t>(i)];
+    Vector3d n = n0;
+    for (const PanelControl& c : controls[static_cast<std::size_t>(i)])
+        n += c.gain * deflection[c.control] * c.axis.cross(n0);
+    return n;
+}
+
 Vector3d Lattice::normal_derivative(int i, const Eigen::VectorXd& deflection, int k) const {
     // Rotations about different axes on one panel are composed in list order; the derivative of
     // the composition with respect to control k differentiates each of its factors.
@@ -226,6 +490,8 @@ Lattice build_lattice(const Model& model) {
         const ChordStations plain = chord_stations(S.n_chord, S.chord_spacing);
         const std::vector<double>& xf = plain.edge;
         const auto first_strip = L.strips.size();
+        std::vector<CamberSlope> camber;
+        for (const Section& sec : S.sections) camber.emplace_back(sec);
         for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
             const Edge ea = edges[e], eb = edges[e + 1];
             if (ea.panel != eb.panel) continue;  // the split point on a section
@@ -249,11 +515,20 @@ Lattice build_lattice(const Model& model) {
             st.area = st.chord * st.width;
             st.first_panel = L.size();
             st.n_panels = S.n_chord;
-            const double incidence = lerp(A.incidence, B.incidence, um);
-            const double claf = lerp(A.lift_slope_factor, B.lift_slope_factor, um);
+            // The surface between two sections is ruled: chord lines, camber-line heights and
+            // hinge lines vary linearly in physical units from one section to the next. Quantities
+            // given per unit chord (camber slope, hinge fraction, lift-slope factor) are therefore
+            // interpolated as chord-weighted values and divided by the local chord, and the local
+            // incidence is the direction of the interpolated chord vector.
+            const double c_m = lerp(A.chord, B.chord, um);
+            const double wa = (1.0 - um) * A.chord / c_m, wb = um * B.chord / c_m;
+            const double incidence =
+                std::atan2(wa * std::sin(A.incidence) + wb * std::sin(B.incidence),
+                           wa * std::cos(A.incidence) + wb * std::cos(B.incidence));
+            const double claf = wa * A.lift_slope_factor + wb * B.lift_slope_factor;
             const ChordStations cs =
                 claf == 1.0 ? plain : chord_stations(S.n_chord, S.chord_spacing, claf);
-            // Spanwise unit vector perpendicular to x, and the undeflected normal x-hat x s-hat.
+            // Spanwise unit vector perpendicular to x, and the strip normal x-hat x s-hat.
             const Vector3d s_hat = Vector3d(0.0, span_vec.y(), span_vec.z()).normalized();
             const Vector3d n0 = Vector3d::UnitX().cross(s_hat);
             // Controls acting on this strip: present on both bounding sections.
@@ -268,7 +543,10 @@ Lattice build_lattice(const Model& model) {
                     std::find_if(B.controls.begin(), B.controls.end(),
                                  [&](const SectionControl& c) { return c.name == ca.name; });
                 if (it == B.controls.end()) continue;
-                const double h = lerp(ca.hinge_chord_fraction, it->hinge_chord_fraction, um);
+                // Hinge line straight between the sections (signed: negative for a leading-edge
+                // control), gain linear between them.
+                const double h = wa * ca.hinge_chord_fraction + wb * it->hinge_chord_fraction;
+                const double gain = lerp(ca.gain, it->gain, um);
                 Vector3d axis = ca.hinge_axis;
                 if (axis.norm() == 0.0) {
                     const Vector3d ha = A.leading_edge + std::abs(ca.hinge_chord_fraction) *
@@ -278,8 +556,9 @@ Lattice build_lattice(const Model& model) {
                     axis = hb - ha;
                 }
                 acting.push_back(
-                    {L.control_index(ca.name), ca.gain, h, ca.duplicate_sign, axis.normalized()});
+                    {L.control_index(ca.name), gain, h, ca.duplicate_sign, axis.normalized()});
             }
+            const Vector3d le_m = A.leading_edge + um * (B.leading_edge - A.leading_edge);
             for (int k = 0; k < S.n_chord; ++k) {
                 const double x0 = xf[static_cast<std::size_t>(k)];
                 const double x1 = xf[static_cast<std::size_t>(k + 1)];
@@ -291,12 +570,18 @@ Lattice build_lattice(const Model& model) {
                 const double xc = std::min(cs.control[static_cast<std::size_t>(k)], 1.0);
                 L.a.push_back(st.le_a + xv * st.chord_a * Vector3d::UnitX());
                 L.b.push_back(st.le_b + xv * st.chord_b * Vector3d::UnitX());
-                const Vector3d le_m = A.leading_edge + um * (B.leading_edge - A.leading_edge);
-                const double c_m = lerp(A.chord, B.chord, um);
+                L.bound_point.push_back(le_m + xv * c_m * Vector3d::UnitX());
                 L.control_point.push_back(le_m + xc * c_m * Vector3d::UnitX());
-                const double slope = lerp(camber_slope(A, xc), camber_slope(B, xc), um);
+                // Normal: perpendicular to the bound vortex and to the local camber-line
+                // direction, which is the chord line turned by incidence and camber slope about
+                // the strip's spanwise direction (leading edge up positive).
+                const double slope = wa * camber[static_cast<std::size_t>(j)](xc) +
+                                     wb * camber[static_cast<std::size_t>(j + 1)](xc);
                 const double theta = incidence - std::atan(slope);
-                L.normal.push_back(rotate(n0, s_hat, theta));
+                const Vector3d e_c = std::cos(theta) * Vector3d::UnitX() - std::sin(theta) * n0;
+                const Vector3d e_b = (L.b.back() - L.a.back()).normalized();
+                const Vector3d n = e_c.cross(e_b);
+                L.normal.push_back(n.norm() > 0.0 ? Vector3d(n.normalized()) : n0);
                 L.area.push_back(dx * st.area);
                 L.corners.push_back({st.le_a + x0 * st.chord_a * Vector3d::UnitX(),
                                      st.le_b + x0 * st.chord_b * Vector3d::UnitX(),
@@ -305,12 +590,17 @@ Lattice build_lattice(const Model& model) {
                 L.chord_fraction.push_back(xc);
                 L.strip.push_back(static_cast<int>(L.strips.size()));
                 L.wake.push_back(S.sheds_wake);
+                // A control deflects the panel's normal in proportion to the part of the panel's
+                // chord that lies on the control surface: panels cut by the hinge line turn by
+                // that fraction of the deflection, so the control derivative varies smoothly
+                // with the hinge position instead of jumping as the hinge crosses a panel.
                 std::vector<PanelControl> pcs;
                 for (const Acting& c : acting) {
-                    const bool aft = c.hinge > 0.0;
-                    const double xm = 0.5 * (x0 + x1);
-                    if ((aft && xm > c.hinge) || (!aft && xm < -c.hinge))
-                        pcs.push_back({c.control, c.gain, c.axis, c.dup});
+                    const double xh = std::abs(c.hinge);
+                    const double on =
+                        c.hinge >= 0.0 ? x1 - std::clamp(xh, x0, x1) : std::clamp(xh, x0, x1) - x0;
+                    const double frac = on / dx;
+                    if (frac > 0.0) pcs.push_back({c.control, c.gain * frac, c.axis, c.dup});
                 }
                 L.controls.push_back(std::move(pcs));
             }
@@ -338,6 +628,7 @@ Lattice build_lattice(const Model& model) {
                 L.a.push_back(mirror_point(L.b[i], yd));
                 L.b.push_back(mirror_point(L.a[i], yd));
                 L.control_point.push_back(mirror_point(L.control_point[i], yd));
+                L.bound_point.push_back(mirror_point(L.bound_point[i], yd));
                 const Vector3d n = L.normal[i];
                 L.normal.push_back(Vector3d(n.x(), -n.y(), n.z()));
                 L.area.push_back(L.area[i]);

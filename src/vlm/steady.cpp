@@ -27,28 +27,70 @@ Vector3d omega_geometry(const Reference& ref, double p_hat, double q_hat, double
 
 namespace {
 
-/// Velocity at p (stretched coordinates) of horseshoe j of the lattice (stretched ends), with
-/// the x component returned to physical space (divided by beta).
-struct Stretched {
-    std::vector<Vector3d> a, b, ta, tb;  // bound ends, trailing-edge ends (no-wake surfaces)
-    std::vector<char> wake;
-    double beta = 1.0;
-    double core2 = 0.0;  // squared core radius of trailing legs [m^2], stretched
+/// Velocity at p of a straight vortex segment x1 -> x2 of unit circulation with a finite core
+/// of squared radius rc2 (the Scully / Burnham-Hallock profile, tangential velocity
+/// Gamma r / (2 pi (r^2 + rc^2)) near an infinite line): the Biot-Savart law with the squared
+/// distance from the line and from the end points each increased by rc^2. Zero on the segment's
+/// line.
+Vector3d cored_segment(const Vector3d& p, const Vector3d& x1, const Vector3d& x2, double rc2) {
+    const Vector3d r1 = p - x1, r2 = p - x2, r0 = x2 - x1;
+    const Vector3d c = r1.cross(r2);
+    const double l2 = r0.squaredNorm();
+    const double c2 = c.squaredNorm();
+    if (c2 <= 1e-24 * l2 * l2) return Vector3d::Zero();
+    const double k =
+        r0.dot(r1 / std::sqrt(r1.squaredNorm() + rc2) - r2 / std::sqrt(r2.squaredNorm() + rc2)) /
+        (c2 + l2 * rc2);
+    return (detail::inv_four_pi * k) * c;
+}
 
-    [[nodiscard]] Vector3d at(const Vector3d& p, std::size_t j) const {
-        Vector3d v = detail::segment(p, a[j], b[j]);
-        if (wake[j]) {
-            const Vector3d x = Vector3d::UnitX();
-            v +=
-                detail::semi_infinite(p, b[j], x, core2) - detail::semi_infinite(p, a[j], x, core2);
-        } else {
-            // No wake: a closed ring through the trailing edge, so the surface sheds no net
-            // circulation (its strips carry no Kutta condition and almost no net lift).
-            v += detail::segment(p, b[j], tb[j]) + detail::segment(p, tb[j], ta[j]) +
-                 detail::segment(p, ta[j], a[j]);
+/// Velocity at p of a semi-infinite vortex line of unit circulation from x1 to infinity along
+/// the unit vector d, with a core of squared radius rc2 as cored_segment.
+Vector3d cored_semi_infinite(const Vector3d& p, const Vector3d& x1, const Vector3d& d, double rc2) {
+    const Vector3d r1 = p - x1;
+    const Vector3d c = d.cross(r1);
+    const double c2 = c.squaredNorm();
+    const double n1 = r1.norm();
+    if (n1 == 0.0 || c2 <= 1e-24 * n1 * n1) return Vector3d::Zero();
+    return (detail::inv_four_pi * (1.0 + d.dot(r1) / n1) / (c2 + rc2)) * c;
+}
+
+/// Velocity at p (stretched coordinates) of horseshoe j of the lattice (stretched ends), with
+/// the x component returned to physical space (divided by beta). Every horseshoe has trailing
+/// legs along +x, NOWAKE surfaces included: their strips carry zero net circulation (see
+/// SteadySolver), so the legs of a strip cancel behind its last bound vortex. Cores as
+/// SteadyOptions: a small one within the component of the point, a large one across components.
+struct Stretched {
+    std::vector<Vector3d> a, b;           // bound ends
+    std::vector<int> component;           // component of each horseshoe
+    std::vector<double> core_in, core_x;  // squared core radii within / across components
+    double beta = 1.0;
+    // Images (Model::y_symmetry, z_symmetry): factors and the z of the horizontal plane.
+    double fy = 0.0, fz = 0.0, z_plane = 0.0;
+
+    [[nodiscard]] Vector3d at(const Vector3d& p, int comp, std::size_t j) const {
+        const double rc2 = comp == component[j] ? core_in[j] : core_x[j];
+        Vector3d v = horseshoe(p, a[j], b[j], rc2);
+        // A mirror image reverses the sense of the bound segment (image ends swapped), two
+        // mirror images restore it.
+        auto my = [](const Vector3d& q) { return Vector3d(q.x(), -q.y(), q.z()); };
+        auto mz = [&](const Vector3d& q) { return Vector3d(q.x(), q.y(), 2.0 * z_plane - q.z()); };
+        if (fy != 0.0) v += fy * horseshoe(p, my(b[j]), my(a[j]), rc2);
+        if (fz != 0.0) {
+            v += fz * horseshoe(p, mz(b[j]), mz(a[j]), rc2);
+            if (fy != 0.0) v += fy * fz * horseshoe(p, my(mz(a[j])), my(mz(b[j])), rc2);
         }
         v.x() /= beta;
         return v;
+    }
+
+private:
+    /// Horseshoe from infinity (+x) to e1, e1 to e2, e2 to infinity.
+    static Vector3d horseshoe(const Vector3d& p, const Vector3d& e1, const Vector3d& e2,
+                              double rc2) {
+        const Vector3d x = Vector3d::UnitX();
+        return cored_segment(p, e1, e2, rc2) + cored_semi_infinite(p, e2, x, rc2) -
+               cored_semi_infinite(p, e1, x, rc2);
     }
 };
 
@@ -56,25 +98,36 @@ Vector3d stretch(const Vector3d& p, double beta) {
     return {p.x() / beta, p.y(), p.z()};
 }
 
-Stretched make_stretched(const Lattice& L, double beta, double lref) {
+Stretched make_stretched(const Model& m, const Lattice& L, double beta, const SteadyOptions& o) {
     Stretched s;
     s.beta = beta;
-    s.core2 = std::pow(1e-6 * lref, 2);
+    s.fy = m.y_symmetry;
+    s.fz = m.z_symmetry;
+    s.z_plane = m.z_symmetry_plane;
     const auto n = static_cast<std::size_t>(L.size());
     s.a.resize(n);
     s.b.resize(n);
-    s.ta.resize(n);
-    s.tb.resize(n);
-    s.wake.resize(n);
+    s.component.resize(n);
+    s.core_in.resize(n);
+    s.core_x.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
         s.a[j] = stretch(L.a[j], beta);
         s.b[j] = stretch(L.b[j], beta);
         const Strip& st = L.strips[static_cast<std::size_t>(L.strip[j])];
-        s.ta[j] = stretch(Vector3d(st.le_a.x() + st.chord_a, L.a[j].y(), L.a[j].z()), beta);
-        s.tb[j] = stretch(Vector3d(st.le_b.x() + st.chord_b, L.b[j].y(), L.b[j].z()), beta);
-        s.wake[j] = L.wake[j] ? 1 : 0;
+        s.component[j] = m.surfaces[static_cast<std::size_t>(st.surface)].component;
+        const Vector3d e = L.b[j] - L.a[j];
+        const double w = std::hypot(e.y(), e.z());
+        s.core_in[j] = std::pow(o.core_within_component * w, 2);
+        s.core_x[j] = std::pow(
+            std::max(o.core_between_components * st.chord, 2.0 * o.core_between_components * w), 2);
     }
     return s;
+}
+
+/// Component of the surface a panel belongs to.
+int component_of(const Model& m, const Lattice& L, std::size_t i) {
+    const Strip& st = L.strips[static_cast<std::size_t>(L.strip[i])];
+    return m.surfaces[static_cast<std::size_t>(st.surface)].component;
 }
 
 }  // namespace
@@ -99,25 +152,43 @@ void add_profile_drag(SteadyResult& r, double CD0, double alpha, double beta) {
     set_wind_forces(r, r.CL, r.CD + CD0, r.CY, alpha, beta);
 }
 
-SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach)
-    : model_(model), lattice_(std::move(lattice)), mach_(mach) {
+SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, SteadyOptions options)
+    : model_(model), lattice_(std::move(lattice)), mach_(mach), options_(options) {
+    if (!(options.core_within_component >= 0.0 && options.core_between_components >= 0.0))
+        throw InputError(fmt::format("vlm: vortex core factors {} and {}; expected numbers >= 0",
+                                     options.core_within_component,
+                                     options.core_between_components));
     if (!(mach >= 0.0 && mach < 0.95))
         throw InputError(fmt::format(
             "vlm: Mach {}; expected 0 <= M < 0.95 (Prandtl-Glauert is subsonic)", mach));
     check_lattice(model_, lattice_);
     beta_pg_ = std::sqrt(1.0 - mach * mach);
     const int n = lattice_.size();
-    const Stretched st = make_stretched(lattice_, beta_pg_, model_.reference.chord);
+    const Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
+    // Rows: flow tangency at every control point, except the last control point of each strip
+    // of a surface that sheds no wake (NOWAKE), whose row states instead that the strip's
+    // circulations sum to zero: such a surface (e.g. a fuselage side plate) carries lift through
+    // its chordwise loading but leaves no trailing vorticity behind its last bound vortex.
+    closure_row_.assign(static_cast<std::size_t>(n), 0);
+    for (const Strip& S : lattice_.strips)
+        if (!S.sheds_wake)
+            closure_row_[static_cast<std::size_t>(S.first_panel + S.n_panels - 1)] = 1;
     MatrixXd A(n, n);
     for (int i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
+        if (closure_row_[ii]) {
+            const Strip& S = lattice_.strips[static_cast<std::size_t>(lattice_.strip[ii])];
+            A.row(i).setZero();
+            A.row(i).segment(S.first_panel, S.n_panels).setOnes();
+            continue;
+        }
         const Vector3d p = stretch(lattice_.control_point[ii], beta_pg_);
         const Vector3d& nrm = lattice_.normal[ii];
-        for (int j = 0; j < n; ++j) A(i, j) = st.at(p, static_cast<std::size_t>(j)).dot(nrm);
+        const int comp = component_of(model_, lattice_, ii);
+        for (int j = 0; j < n; ++j) A(i, j) = st.at(p, comp, static_cast<std::size_t>(j)).dot(nrm);
     }
     lu_.compute(A);
-    mid_.resize(static_cast<std::size_t>(n));
-    for (std::size_t i = 0; i < mid_.size(); ++i) mid_[i] = 0.5 * (lattice_.a[i] + lattice_.b[i]);
+    mid_ = lattice_.bound_point;
     // Trefftz plane: the wake of strip t is a pair of infinite 2-D vortices at its edges (the
     // trailing legs far downstream); wash at the centre of strip s per unit circulation of t.
     const auto ns = lattice_.strips.size();
@@ -138,9 +209,26 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach)
                 trefftz_(static_cast<Eigen::Index>(2 * s + 1), static_cast<Eigen::Index>(t)) +=
                     k * dy;
             };
-            // Legs: b -> infinity (+x) and infinity -> a (-x).
+            // Legs: b -> infinity (+x) and infinity -> a (-x); images of the symmetry planes
+            // with their sense reversed by each reflection.
+            const double fy = model_.y_symmetry, fz = model_.z_symmetry;
+            const double zp = model_.z_symmetry_plane;
+            auto my = [](const Vector3d& q) { return Vector3d(q.x(), -q.y(), q.z()); };
+            auto mz = [&](const Vector3d& q) { return Vector3d(q.x(), q.y(), 2.0 * zp - q.z()); };
             point_vortex(T.le_b, 1.0);
             point_vortex(T.le_a, -1.0);
+            if (fy != 0.0) {
+                point_vortex(my(T.le_a), fy);
+                point_vortex(my(T.le_b), -fy);
+            }
+            if (fz != 0.0) {
+                point_vortex(mz(T.le_a), fz);
+                point_vortex(mz(T.le_b), -fz);
+                if (fy != 0.0) {
+                    point_vortex(my(mz(T.le_b)), fy * fz);
+                    point_vortex(my(mz(T.le_a)), -fy * fz);
+                }
+            }
         }
     }
 }
@@ -151,7 +239,12 @@ VectorXd SteadySolver::rhs(const VectorXd& deflection, const Vector3d& v, const 
     for (int i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
         const Vector3d r = lattice_.control_point[ii] - model_.reference.point;
-        const Vector3d nrm = lattice_.deflected_normal(i, deflection);
+        if (closure_row_[ii]) {
+            b[i] = 0.0;
+            continue;
+        }
+        // Deflections to first order (AVL's convention): loads linear in the deflections.
+        const Vector3d nrm = lattice_.linearized_normal(i, deflection);
         b[i] = -(v - w.cross(r)).dot(nrm);
     }
     return b;
@@ -160,15 +253,16 @@ VectorXd SteadySolver::rhs(const VectorXd& deflection, const Vector3d& v, const 
 MatrixXd SteadySolver::induced_at_bound(const MatrixXd& gamma) const {
     const int n = lattice_.size();
     const auto K = gamma.cols();
-    const Stretched st = make_stretched(lattice_, beta_pg_, model_.reference.chord);
+    const Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
     MatrixXd U = MatrixXd::Zero(3 * n, K);
     const MatrixXd gt = gamma.transpose();  // K x N: column j holds horseshoe j's strengths
     for (int i = 0; i < n; ++i) {
         const Vector3d p = stretch(mid_[static_cast<std::size_t>(i)], beta_pg_);
+        const int comp = component_of(model_, lattice_, static_cast<std::size_t>(i));
         Eigen::Matrix<double, 3, Eigen::Dynamic> acc =
             Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, K);
         for (int j = 0; j < n; ++j) {
-            const Vector3d v = st.at(p, static_cast<std::size_t>(j));
+            const Vector3d v = st.at(p, comp, static_cast<std::size_t>(j));
             acc.noalias() += v * gt.col(j).transpose();
         }
         U.middleRows(3 * i, 3) = acc;
@@ -234,14 +328,38 @@ SteadyResult SteadySolver::loads_from(const VectorXd& g, const VectorXd& vind, c
         const Vector3d rm = mid_[ii] - ref.point;
         const Vector3d vl = V - w.cross(rm) + vind.segment<3>(3 * i);
         const Vector3d l = lattice_.b[ii] - lattice_.a[ii];
-        const Vector3d f = g[i] * vl.cross(l);
+        Vector3d f = g[i] * vl.cross(l);
         raw.F += f;
         raw.M += rm.cross(f);
+        // The trailing legs run over the surface from the bound vortex to the trailing edge
+        // and carry a load there too: Kutta-Joukowski with the onset flow (free stream and
+        // rotation; the induced velocity of the chordwise legs is neglected, as in AVL). Under
+        // sideslip or rotation the two legs of a horseshoe are loaded unequally; this is the
+        // chordwise-vorticity share of the rolling moment due to sideslip of swept wings.
+        const Strip& st = lattice_.strips[static_cast<std::size_t>(lattice_.strip[ii])];
+        const Vector3d& pa = lattice_.a[ii];
+        const Vector3d& pb = lattice_.b[ii];
+        const double xte_a = st.le_a.x() + st.chord_a, xte_b = st.le_b.x() + st.chord_b;
+        const Vector3d ra(0.5 * (pa.x() + xte_a), pa.y(), pa.z());
+        const Vector3d rb(0.5 * (pb.x() + xte_b), pb.y(), pb.z());
+        const Vector3d fa =
+            g[i] * (V - w.cross(ra - ref.point)).cross(Vector3d(pa.x() - xte_a, 0.0, 0.0));
+        const Vector3d fb =
+            g[i] * (V - w.cross(rb - ref.point)).cross(Vector3d(xte_b - pb.x(), 0.0, 0.0));
+        raw.F += fa + fb;
+        raw.M += (ra - ref.point).cross(fa) + (rb - ref.point).cross(fb);
+        f += fa + fb;
         if (with_detail) {
             StripLoad& sl = r.strips[static_cast<std::size_t>(lattice_.strip[ii])];
             sl.force += f / 0.5;
             sl.circulation += g[i];
         }
+    }
+    if (model_.y_symmetry == 1) {
+        // Symmetric image (AVL IYsym = 1): the lattice is one half of the aircraft; the other
+        // half's loads double the symmetric ones and cancel the antisymmetric ones.
+        raw.F = Vector3d(2.0 * raw.F.x(), 0.0, 2.0 * raw.F.z());
+        raw.M = Vector3d(0.0, 2.0 * raw.M.y(), 0.0);
     }
     const double qS = 0.5 * ref.area;
     r.body.CX = -raw.F.x() / qS;
@@ -268,6 +386,7 @@ SteadyResult SteadySolver::loads_from(const VectorXd& g, const VectorXd& vind, c
                           0.5 * vt[static_cast<Eigen::Index>(2 * t + 1)]);
         Ft += gs[static_cast<Eigen::Index>(t)] * (V + vw).cross(l);
     }
+    if (model_.y_symmetry == 1) Ft = Vector3d(2.0 * Ft.x(), 0.0, 2.0 * Ft.z());
     const auto wt = aero::wind_from_body(-Ft.x() / qS, Ft.y() / qS, -Ft.z() / qS, s.alpha, s.beta);
     r.CL_trefftz = wt.CL;
     r.CD_trefftz = wt.CD;
@@ -321,11 +440,15 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
         v << r.CL, r.CD_induced, r.CY, r.body.Cl, r.body.Cm, r.body.Cn;
         return v;
     };
-    // Stability axes: x along the projection of the velocity on the body x-z plane.
-    auto stab = [](const SteadyResult& r, double alpha) {
+    // Stability axes: x along the projection of the velocity on the body x-z plane. The side
+    // force is the force along their y axis (the body y axis) from the near-field forces, not
+    // the wind-axis CY: the beta derivatives of the two differ by the drag.
+    auto stab = [](const SteadyResult& r, double alpha, double beta) {
         Eigen::Matrix<double, 6, 1> v;
         const double ca = std::cos(alpha), sa = std::sin(alpha);
-        v << r.CL, r.CD_induced, r.CY, r.body.Cl * ca + r.body.Cn * sa, r.body.Cm,
+        const double cy =
+            aero::body_from_wind(r.CL, r.CD_near_field + r.CD_profile, r.CY, alpha, beta)[1];
+        v << r.CL, r.CD_induced, cy, r.body.Cl * ca + r.body.Cn * sa, r.body.Cm,
             -r.body.Cl * sa + r.body.Cn * ca;
         return v;
     };
@@ -352,7 +475,7 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
             t.p_hat = p_s * c - r_s * si;
             t.r_hat = p_s * si + r_s * c;
             t.q_hat = q;
-            return stab(loads(u, t, false), alpha);
+            return stab(loads(u, t, false), alpha, beta);
         };
         const double x0[5] = {a0, s.beta, ps, s.q_hat, rs};
         for (int k = 0; k < 5; ++k) {
@@ -388,7 +511,8 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
             const SteadyResult rp = loads_from(G.col(2 * k), U.col(2 * k), s, false);
             const SteadyResult rm = loads_from(G.col(2 * k + 1), U.col(2 * k + 1), s, false);
             d.control.col(k) = (vec(rp) - vec(rm)) / (2 * h);
-            d.control_stability.col(k) = (stab(rp, s.alpha) - stab(rm, s.alpha)) / (2 * h);
+            d.control_stability.col(k) =
+                (stab(rp, s.alpha, s.beta) - stab(rm, s.alpha, s.beta)) / (2 * h);
         }
     }
     const double CLa = d.body(0, 0), Cma = d.body(4, 0);

@@ -108,29 +108,37 @@ TEST(VlmAvlValidation, EllipticWings) {
     }
 }
 
-// Flapped plates: AVL 3.40 CL_delta 0.044450 /deg (AR 6, cf/c 0.25); thin-airfoil theory for
-// the AR 1000 plate 2 (pi - theta_h + sin theta_h) = 3.826 /rad (AVL 3.745, 2.1 % low).
+// Flapped plates: AVL 3.40 CL_delta 0.044450 /deg (AR 6, cf/c 0.25) and 0.065362 /deg = 3.745
+// /rad (AR 1000). The hinge (x/c 0.75) cuts a panel of both lattices; that panel's normal turns
+// by the fraction of its chord behind the hinge, as in AVL. Measured: both equal AVL's to 4
+// digits. Thin-airfoil theory, 2 (pi - theta_h + sin theta_h) = 3.826 /rad, is 2.1 % above AVL:
+// 32 chordwise panels resolve the flow about the hinge coarsely (the same plate with 64 panels
+// and 30 strips per side gives 3.826 here); checked within 3 %.
 TEST(VlmAvlValidation, FlappedPlates) {
     REQUIRE_REFERENCE();
-    // Measured: AR 6 3.6 % below AVL, AR 1000 0.8 % above thin-airfoil theory and 3 % above AVL;
-    // the 2 % against AVL is not met for control derivatives yet (docs/vlm.md).
     const Derivatives d6 = derivatives_of(avl_dir / "cases" / "flap_AR6.avl", 0.0);
     ASSERT_EQ(d6.control.cols(), 1);
     std::printf("flap AR6 CLd %.6f /deg (AVL 0.044450)\n", d6.control(0, 0) * deg);
-    EXPECT_LT(rel(d6.control(0, 0) * deg, 0.044450), 0.045);
+    EXPECT_LT(rel(d6.control(0, 0) * deg, 0.044450), 0.02);
     const Derivatives d2 = derivatives_of(avl_dir / "cases" / "flap2d.avl", 0.0);
     const double theta_h = std::acos(1.0 - 2.0 * 0.75);
     const double theory = 2.0 * (std::numbers::pi - theta_h + std::sin(theta_h));
     std::printf("flap AR1000 CLd %.4f /rad (AVL 3.745, theory %.4f)\n", d2.control(0, 0), theory);
-    EXPECT_LT(rel(d2.control(0, 0), 3.745), 0.04);
-    EXPECT_LT(rel(d2.control(0, 0), theory), 0.02);
+    EXPECT_LT(rel(d2.control(0, 0) * deg, 0.065362), 0.02);
+    EXPECT_LT(rel(d2.control(0, 0), theory), 0.03);
 }
 
 // The b737 sample aircraft at AVL's trimmed run case 1 (alpha 1.91843 deg, elevator 0.8968 deg,
-// Mach 0.70, moments about X_cg 65.2686, Z_cg 1.16559): stability-axis derivatives. The issue's
-// target is 3 %; met by CLa, Cmq, Clp, Cnr, CYb, Cnb, CLq. Not yet met (measured, docs/vlm.md):
-// Cma 4.5 %, Clb 17 %, control derivatives 4-12 %; their bounds below hold the present state so
-// that a regression shows.
+// Mach 0.70, moments about X_cg 65.2686, Z_cg 1.16559): the derivatives of AVL's ST listing
+// within the 3 % (measured: all within 0.1 %, README values being rounded to 4-5
+// digits), and the trim itself (AVL: Cm = 0 at CL 0.544438).
+//
+// How AVL's listing maps onto Derivatives (steady.hpp): its angle and rate derivatives are the
+// stability set; its control derivatives are printed under Cl' and Cn' but are body-axis
+// moments (the `control` set), and they omit the change of the induced velocity at the loaded
+// vortices with the deflection. Where that omission matters (slat CL 6 %, aileron Cn 17 %), the
+// reference is AVL's own central difference of its total forces (+-5 deg, this machine, DP):
+// slat CL -0.0011830 /deg, Cm -0.0010740 /deg; aileron Cn 0.0001480 /deg.
 TEST(VlmAvlValidation, Boeing737Sample) {
     REQUIRE_REFERENCE();
     Model m = read_avl(avl_dir / "samples" / "b737.avl");
@@ -142,30 +150,50 @@ TEST(VlmAvlValidation, Boeing737Sample) {
     s.deflection = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(lattice.control_names.size()));
     s.deflection[lattice.control_index("elevator")] = 0.8968 * deg;
     const Derivatives d = solver.derivatives(s);
-    std::printf("b737 lattice %d vortices, %zu strips; CL %.5f (AVL 0.544438) Cm %.5f (AVL 0)\n",
+    std::printf("b737 lattice %d vortices, %zu strips; CL %.5f (AVL 0.544438) Cm %.6f (AVL 0)\n",
                 lattice.size(), lattice.strips.size(), d.state.CL, d.state.body.Cm);
+    EXPECT_EQ(lattice.size(), 1505);
+    EXPECT_EQ(lattice.strips.size(), 137u);
+    EXPECT_LT(rel(d.state.CL, 0.544438), 0.03);
+    // Cm at AVL's trim: within 0.001 (0.014 deg of elevator).
+    EXPECT_NEAR(d.state.body.Cm, 0.0, 1e-3);
     struct Row {
         const char* name;
         double value, avl, tol;
     };
     const auto& S = d.stability;
+    // Control derivatives per degree: CL and CY (equal in every axis set at beta = 0) and the
+    // body-axis moments, as AVL prints them.
     auto ctl = [&](const char* c, int row) {
-        return d.control_stability(row, lattice.control_index(c)) * deg;
+        return d.control(row, lattice.control_index(c)) * deg;
     };
     const Row rows[] = {{"CLa", S(0, 0), 7.2992, 0.03},
-                        {"Cma", S(4, 0), -1.8846, 0.055},
-                        {"Cmq", S(4, 3), -84.907, 0.03},
-                        {"Clp", S(3, 2), -0.5707, 0.03},
-                        {"Cnr", S(5, 4), -0.4915, 0.03},
-                        {"CYb", S(2, 1), -1.3260, 0.03},
-                        {"Clb", S(3, 1), -0.2761, 0.18},
-                        {"Cnb", S(5, 1), 0.2444, 0.03},
+                        {"Cma", S(4, 0), -1.8846, 0.03},
                         {"CLq", S(0, 3), 22.201, 0.03},
-                        {"Cl_aileron", ctl("aileron", 3), 0.002762, 0.10},
-                        {"Cm_elevator", ctl("elevator", 4), -0.071575, 0.06},
-                        {"Cn_rudder", ctl("rudder", 5), 0.004367, 0.12},
-                        {"CY_rudder", ctl("rudder", 2), -0.009405, 0.13},
-                        {"CL_flap", ctl("flap", 0), 0.036081, 0.06}};
+                        {"Cmq", S(4, 3), -84.907, 0.03},
+                        {"Xnp", d.x_neutral_point, 68.109, 0.03},
+                        {"CYb", S(2, 1), -1.3260, 0.03},
+                        {"Clb", S(3, 1), -0.2761, 0.03},
+                        {"Cnb", S(5, 1), 0.2444, 0.03},
+                        {"CYp", S(2, 2), 0.0792, 0.03},
+                        {"Clp", S(3, 2), -0.5707, 0.03},
+                        {"Cnp", S(5, 2), -0.0348, 0.03},
+                        {"CYr", S(2, 4), 1.0474, 0.03},
+                        {"Clr", S(3, 4), 0.2268, 0.03},
+                        {"Cnr", S(5, 4), -0.4915, 0.03},
+                        {"CL_flap", ctl("flap", 0), 0.036081, 0.03},
+                        {"Cm_flap", ctl("flap", 4), 0.023079, 0.03},
+                        {"CY_aileron", ctl("aileron", 2), 0.000139, 0.03},
+                        {"Cl_aileron", ctl("aileron", 3), 0.002762, 0.03},
+                        {"CL_elevator", ctl("elevator", 0), 0.015022, 0.03},
+                        {"Cm_elevator", ctl("elevator", 4), -0.071575, 0.03},
+                        {"CY_rudder", ctl("rudder", 2), -0.009405, 0.03},
+                        {"Cl_rudder", ctl("rudder", 3), -0.000993, 0.03},
+                        {"Cn_rudder", ctl("rudder", 5), 0.004367, 0.03},
+                        // AVL finite differences (see above).
+                        {"CL_slat", ctl("slat", 0), -0.0011830, 0.03},
+                        {"Cm_slat", ctl("slat", 4), -0.0010740, 0.03},
+                        {"Cn_aileron", ctl("aileron", 5), 0.0001480, 0.03}};
     for (const Row& r : rows) {
         std::printf("  %-12s %12.6f  AVL %12.6f  diff %+.2f %%\n", r.name, r.value, r.avl,
                     100.0 * (r.value - r.avl) / std::abs(r.avl));

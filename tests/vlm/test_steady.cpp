@@ -100,6 +100,64 @@ TEST(VlmSteady, PrandtlGlauertScaling) {
     EXPECT_LT(ratio, 1.0 / 0.8);  // but less than the 2-D 1/beta = 1.25
 }
 
+// A half model with the symmetry image (AVL IYsym = 1) gives the loads of the full model with a
+// mirror copy (YDUPLICATE); a solid plane below (IZsym = 1, ground effect) raises the lift slope
+// and lowers the induced drag at a given lift.
+TEST(VlmSteady, SymmetryPlaneImages) {
+    const Model full = rectangle(6.0, 6, 12);
+    Model half = full;
+    half.surfaces[0].y_duplicate.reset();
+    half.y_symmetry = 1;
+    FlowState s;
+    s.alpha = 4.0 * std::numbers::pi / 180.0;
+    const Derivatives df = SteadySolver(full, build_lattice(full), 0.0).derivatives(s);
+    const Derivatives dh = SteadySolver(half, build_lattice(half), 0.0).derivatives(s);
+    EXPECT_NEAR(dh.state.CL, df.state.CL, 1e-9);
+    EXPECT_NEAR(dh.state.CD_induced, df.state.CD_induced, 1e-9);
+    EXPECT_NEAR(dh.state.CD_near_field, df.state.CD_near_field, 1e-9);
+    EXPECT_NEAR(dh.state.body.Cm, df.state.body.Cm, 1e-9);
+    EXPECT_NEAR(dh.stability(0, 0), df.stability(0, 0), 1e-6);
+    EXPECT_NEAR(dh.stability(4, 3), df.stability(4, 3), 1e-6);
+    Model ground = full;
+    ground.z_symmetry = 1;
+    ground.z_symmetry_plane = -0.5;  // half a chord below the plate
+    const Derivatives dg = SteadySolver(ground, build_lattice(ground), 0.0).derivatives(s);
+    EXPECT_GT(dg.stability(0, 0), 1.05 * df.stability(0, 0));
+    EXPECT_GT(dg.state.span_efficiency, 1.2 * df.state.span_efficiency);
+}
+
+// A surface that sheds no wake (AVL NOWAKE) carries zero net circulation on every strip.
+TEST(VlmSteady, NoWakeStripsCarryNoNetCirculation) {
+    Model m = rectangle(4.0, 6, 8);
+    m.surfaces[0].sheds_wake = false;
+    const Lattice L = build_lattice(m);
+    FlowState s;
+    s.alpha = 0.1;
+    const SteadyResult r = SteadySolver(m, L, 0.0).solve(s);
+    for (const Strip& st : L.strips)
+        EXPECT_NEAR(r.gamma.segment(st.first_panel, st.n_panels).sum(), 0.0, 1e-12);
+    EXPECT_NEAR(r.CD_trefftz, 0.0, 1e-12);
+}
+
+// A hinge line inside a panel turns that panel by the fraction of its chord behind the hinge:
+// the flap derivative varies continuously as the hinge crosses the panel.
+TEST(VlmSteady, ControlDerivativeIsContinuousInTheHinge) {
+    auto cld = [](double hinge) {
+        Model m = rectangle(6.0, 4, 10);  // panel edges at x/c 0, 0.18, 0.50, 0.82, 1 (cosine)
+        for (auto& sec : m.surfaces[0].sections) {
+            SectionControl c;
+            c.name = "flap";
+            c.hinge_chord_fraction = hinge;
+            sec.controls.push_back(c);
+        }
+        return SteadySolver(m, build_lattice(m), 0.0).derivatives(FlowState{}).control(0, 0);
+    };
+    const double a = cld(0.60), b = cld(0.62), c = cld(0.64);
+    EXPECT_GT(a, b);
+    EXPECT_GT(b, c);
+    EXPECT_NEAR(b - a, c - b, 0.05 * std::abs(c - b));  // linear within the panel
+}
+
 TEST(VlmSteady, BadInputIsReported) {
     Model m = rectangle(4.0, 4, 4);
     m.surfaces[0].sections[1].chord = 0.0;

@@ -17,7 +17,8 @@
 namespace manta::vlm {
 
 /// A control surface acting on a panel: the normal rotates by `gain * value` of control
-/// `control` (index into Lattice::control_names) about the unit axis `axis`.
+/// `control` (index into Lattice::control_names) about the unit axis `axis`. A panel cut by the
+/// hinge line has its gain scaled by the fraction of its chord on the control surface.
 struct PanelControl {
     int control = 0;
     double gain = 1.0;
@@ -48,20 +49,29 @@ struct Lattice {
     // Per panel:
     std::vector<Eigen::Vector3d> a, b;  ///< bound segment ends; positive circulation a -> b
     std::vector<Eigen::Vector3d> control_point;  ///< three-quarter-chord point at mid-span
-    std::vector<Eigen::Vector3d> normal;         ///< undeflected unit normal (incidence, camber)
-    std::vector<double> area;                    ///< panel area
+    /// Point of the bound segment at the spanwise station of the control point (where the steady
+    /// solver evaluates the local velocity and applies the Kutta-Joukowski force).
+    std::vector<Eigen::Vector3d> bound_point;
+    std::vector<Eigen::Vector3d> normal;  ///< undeflected unit normal (incidence, camber)
+    std::vector<double> area;             ///< panel area
     /// Panel corners: leading edge on side a, leading edge on side b, trailing edge on side b,
     /// trailing edge on side a (for output).
     std::vector<std::array<Eigen::Vector3d, 4>> corners;
     std::vector<double> chord_fraction;  ///< x/c of the control point in its strip
     std::vector<int> strip;              ///< owning strip
-    std::vector<bool> wake;              ///< trailing legs present (false: NOWAKE surface)
+    /// The panel's surface sheds a wake (false: NOWAKE surface; the steady solver keeps its
+    /// trailing legs but gives each of its strips zero net circulation, see steady.hpp).
+    std::vector<bool> wake;
     std::vector<std::vector<PanelControl>> controls;
 
     [[nodiscard]] int size() const { return static_cast<int>(a.size()); }
     /// Normal of panel i with the control values `deflection` (one per control name) [rad]:
     /// the undeflected normal rotated by each acting control.
     [[nodiscard]] Eigen::Vector3d deflected_normal(int i, const Eigen::VectorXd& deflection) const;
+    /// Normal of panel i to first order in the control values: the undeflected normal plus, for
+    /// each acting control, gain * value * (axis x normal). Not of unit length; the steady solver
+    /// uses it (as AVL does), so that loads are linear in the deflections.
+    [[nodiscard]] Eigen::Vector3d linearized_normal(int i, const Eigen::VectorXd& deflection) const;
     /// d normal / d control k at `deflection` (zero if control k does not act on panel i).
     [[nodiscard]] Eigen::Vector3d normal_derivative(int i, const Eigen::VectorXd& deflection,
                                                     int k) const;

@@ -9,16 +9,20 @@
 /// A surface is a list of sections joined by straight lines; each pair of consecutive sections
 /// bounds a panel of strips, each strip `n_chord` horseshoe vortices deep. The geometry stays in
 /// the plane of the sections (incidence, camber and control deflections tilt the normals: the
-/// small-disturbance boundary condition of classical vortex-lattice codes).
+/// small-disturbance boundary condition of classical vortex-lattice codes). Between two sections
+/// the surface is ruled, as in AVL: at a strip, the chord vector (hence the incidence), the
+/// camber-line height and the hinge line are the linear interpolations of the two sections' in
+/// physical units, i.e. camber slope, hinge fraction and lift-slope factor are chord-weighted.
 ///
 /// Control surfaces are declared on sections: a control acts on the strips between two
-/// consecutive sections that both carry it, with its hinge chord fraction interpolated linearly
-/// between them. A positive local deflection is a right-handed rotation about the hinge axis; the
-/// default axis runs along the hinge line from the section toward the next one, so on a
-/// horizontal surface defined from root to tip along +y a positive deflection moves the trailing
-/// edge down. The mirror copy of a duplicated surface rotates about the mirror image of the axis
-/// taken as an axial vector, (-hx, hy, -hz), by `duplicate_sign` times the deflection: +1 moves
-/// both trailing edges down (elevator, flap), -1 moves them oppositely (aileron).
+/// consecutive sections that both carry it, with a straight hinge line between them and its gain
+/// interpolated linearly. A panel cut by the hinge line turns by the fraction of its chord that
+/// lies on the control surface. A positive local deflection is a right-handed rotation about the
+/// hinge axis; the default axis runs along the hinge line from the section toward the next one, so
+/// on a horizontal surface defined from root to tip along +y a positive deflection moves the
+/// trailing edge down. The mirror copy of a duplicated surface rotates about the mirror image of
+/// the axis taken as an axial vector, (-hx, hy, -hz), by `duplicate_sign` times the deflection: +1
+/// moves both trailing edges down (elevator, flap), -1 moves them oppositely (aileron).
 
 #include <Eigen/Core>
 #include <optional>
@@ -92,11 +96,18 @@ struct Surface {
     /// Strips over the whole surface distributed by arc length; 0: the per-section counts.
     int n_span = 0;
     double span_spacing = 1.0;
+    /// Scale factors the sections were multiplied by (AVL SCALE; the leading edges and chords
+    /// above are already scaled). A whole-surface strip distribution (`n_span` > 0) is laid out
+    /// along the spanwise arc length of the sections as written, before scaling, as AVL does:
+    /// with unequal y and z factors this moves the strips relative to the scaled geometry.
+    Eigen::Vector3d section_scale = Eigen::Vector3d::Ones();
     /// Mirror copy about the plane y = y_duplicate (AVL YDUPLICATE; symmetric aircraft: 0).
     std::optional<double> y_duplicate;
-    bool sheds_wake = true;  ///< false: no trailing legs (AVL NOWAKE; e.g. a fuselage plate)
-    /// Surfaces with the same component index are one body of the aircraft (AVL COMPONENT);
-    /// informative, the lattice treats every surface alike.
+    /// false: the surface leaves no trailing vorticity behind it (AVL NOWAKE; e.g. a fuselage
+    /// plate): each of its strips carries zero net circulation (see steady.hpp).
+    bool sheds_wake = true;
+    /// Surfaces with the same component index are one body of the aircraft (AVL COMPONENT): the
+    /// steady solver gives vortices seen from another component a large core (SteadyOptions).
     int component = 0;
 };
 
@@ -122,8 +133,11 @@ struct Model {
     std::string name;
     Reference reference;
     double mach = 0.0;  ///< default Mach number (AVL header)
-    /// Image about y = 0: +1 symmetric, -1 antisymmetric, 0 none (AVL IYsym). Images about
-    /// z = z_symmetry likewise (AVL IZsym; ground effect with -1... see docs/vlm.md).
+    /// Image about y = 0: +1 symmetric, -1 antisymmetric, 0 none (AVL IYsym). With +1 the
+    /// lattice is one half of a symmetric aircraft: the steady solver doubles the symmetric
+    /// loads (CL, CD, Cm) and sets the antisymmetric ones (CY, Cl, Cn) to zero, as AVL does.
+    /// Image about z = z_symmetry_plane likewise (AVL IZsym): +1 a solid plane (ground effect:
+    /// no flow through it), -1 a plane of zero pressure jump (free surface).
     int y_symmetry = 0;
     int z_symmetry = 0;
     double z_symmetry_plane = 0.0;

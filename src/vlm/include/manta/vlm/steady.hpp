@@ -4,15 +4,28 @@
 ///
 /// Boundary condition: flow tangency at every control point, (V_inf - omega x r + v_ind) . n = 0,
 /// with the induced velocity normal to the undeflected (cambered) panel and the control
-/// deflections rotating the normals of the free-stream term (the small-disturbance form of
-/// classical vortex-lattice codes). Compressibility by the Prandtl-Glauert transformation: the
-/// lattice is stretched by 1/beta in x, beta = sqrt(1 - M^2), and the induced x velocity is
-/// divided by beta. Forces by the Kutta-Joukowski law on every bound segment with the local
-/// velocity (free stream, rotation and the velocity induced by every horseshoe); induced drag
-/// also in the Trefftz plane. The circulation is linear in the free-stream and rotation
-/// components, so six unit solutions (u, v, w, p, q, r) per deflection state give the loads at
-/// any (alpha, beta, p, q, r) by sums over the panels, and derivatives by differences of those
-/// sums are consistent with the discrete solution.
+/// deflections tilting the normals of the free-stream term to first order, n0 + delta (axis x n0)
+/// (the small-disturbance form of classical vortex-lattice codes; Lattice::linearized_normal).
+/// A surface that sheds no wake (Surface::sheds_wake false, AVL NOWAKE) keeps its trailing legs
+/// but replaces the tangency condition at the last control point of each strip by zero net
+/// circulation of the strip, so that nothing trails behind its last bound vortex. Horseshoes
+/// have finite vortex cores (SteadyOptions) and, where the model has symmetry planes
+/// (Model::y_symmetry, z_symmetry), their mirror images. Compressibility by the Prandtl-Glauert
+/// transformation: the lattice is stretched by 1/beta in x, beta = sqrt(1 - M^2), and the induced
+/// x velocity is divided by beta.
+///
+/// Forces by the Kutta-Joukowski law, rho V x Gamma per unit length, on every bound segment with
+/// the local velocity (free stream, rotation and the velocity induced by every horseshoe, taken
+/// where the segment crosses the spanwise station of its strip's control points), and on the
+/// parts of the trailing legs that lie on the surface (bound vortex to trailing edge) with the
+/// free stream and rotation only; the latter carry the chordwise-vorticity loads under sideslip
+/// and rotation (a large share of Cl_beta of swept wings). Induced drag in the Trefftz plane.
+/// This is the force model of AVL 3.40, which the solver reproduces (tests/vlm).
+///
+/// The circulation is linear in the free-stream and rotation components, so six unit solutions
+/// (u, v, w, p, q, r) per deflection state give the loads at any (alpha, beta, p, q, r) by sums
+/// over the panels, and derivatives by differences of those sums are consistent with the discrete
+/// solution.
 ///
 /// Axes: the lattice is in geometry axes (x aft, y right, z up); results are the flight-mechanics
 /// coefficients of aero/types.hpp (body axes x forward, y right, z down; wind-axis CL CD CY),
@@ -51,8 +64,8 @@ struct SteadyResult {
     aero::BodyCoefficients<double> body;  ///< CX CY CZ (body), Cl Cm Cn (body, about the MRP)
     double CL = 0.0, CD = 0.0, CY = 0.0;  ///< wind axes, CD = CD_induced + CD_profile
     double CD_induced = 0.0;              ///< induced drag: the Trefftz-plane value
-    double CD_near_field = 0.0;           ///< induced drag by Kutta-Joukowski on the bound segments
-    double CD_trefftz = 0.0;              ///< Trefftz plane
+    double CD_near_field = 0.0;  ///< induced drag by Kutta-Joukowski on the vortex segments
+    double CD_trefftz = 0.0;     ///< Trefftz plane
     double CL_trefftz = 0.0;
     /// Profile (viscous) drag: Model::profile_drag plus what add_profile_drag added.
     double CD_profile = 0.0;
@@ -64,12 +77,25 @@ struct SteadyResult {
 /// Stability and control derivatives at a state: per radian for angles and deflections, per
 /// non-dimensional rate for p q r. Two sets: body axes (the flight model's) and stability axes
 /// (body axes rotated by alpha about y; the set vortex-lattice codes usually print).
+///
+/// Comparing with AVL 3.40's `ST` listing: its alpha, beta and rate derivatives are the
+/// `stability` set (CY there is the stability-axis side force, as here). Its control
+/// derivatives, although printed under the stability-axis headings Cl' and Cn', are the
+/// body-axis moments (the `control` set). And its control derivatives leave out the change of
+/// the induced velocity at the bound vortices with the deflection (they are dGamma/d delta
+/// times the force per unit circulation of the undeflected state); the derivatives here are the
+/// complete ones, which equal AVL's own finite differences of its total forces. The two differ
+/// where a control's lift acts mainly through induced velocities on other loaded vortices, e.g.
+/// a leading-edge slat's CL (6 % on AVL's b737 sample) or an aileron's yawing moment.
 struct Derivatives {
-    /// d{CL CD CY Cl Cm Cn}/d{alpha beta p q r}: rows coefficient, columns variable.
+    /// d{CL CD CY Cl Cm Cn}/d{alpha beta p q r}: rows coefficient, columns variable (CY, CL, CD
+    /// wind axes; moments body axes).
     Eigen::Matrix<double, 6, 5> body;
-    Eigen::Matrix<double, 6, 5> stability;  ///< Cl Cm Cn about stability axes, rates likewise
+    /// As `body` with Cl Cn about stability axes, rates about stability axes and CY the
+    /// stability-axis (= body-axis) side force.
+    Eigen::Matrix<double, 6, 5> stability;
     /// d{CL CD CY Cl Cm Cn}/d control, one column per lattice control (body-axis moments), and
-    /// the stability-axis moments.
+    /// the stability-axis set (stability-axis moments and side force).
     Eigen::Matrix<double, 6, Eigen::Dynamic> control;
     Eigen::Matrix<double, 6, Eigen::Dynamic> control_stability;
     double x_neutral_point = 0.0;  ///< geometry x of the neutral point [m]
@@ -77,11 +103,27 @@ struct Derivatives {
     SteadyResult state;            ///< the solution at the state itself
 };
 
+/// Vortex cores of the steady solver (AVL 3.40's defaults). Each horseshoe's bound segment and
+/// trailing legs have a finite core of radius r_c (Scully profile: the induced velocity at
+/// distance r from a line is scaled by r^2 / (r^2 + r_c^2)), which depends on whether the point
+/// where the velocity is wanted lies on a surface of the same component (Surface::component) as
+/// the horseshoe:
+/// * same component: r_c = core_within_component * w, with w the spanwise (y-z) width of the
+///   horseshoe; the default 1e-4 only regularises near-coincident points;
+/// * other component: r_c = max(k c, 2 k w), k = core_between_components, c the chord of the
+///   horseshoe's strip (AVL VRCORE = 0.25): wakes of one component passing near the lattice of
+///   another (a wing's legs over a tailplane) do not induce spikes there.
+/// Both 0: singular vortices (points on a vortex line excepted).
+struct SteadyOptions {
+    double core_within_component = 1e-4;
+    double core_between_components = 0.25;
+};
+
 /// The solver for one lattice and Mach number: influence matrix built and factorised once.
 class SteadySolver {
 public:
-    /// InputError for Mach outside [0, 0.95) or a lattice check failure.
-    SteadySolver(const Model& model, Lattice lattice, double mach);
+    /// InputError for Mach outside [0, 0.95), negative core factors or a lattice check failure.
+    SteadySolver(const Model& model, Lattice lattice, double mach, SteadyOptions options = {});
 
     [[nodiscard]] const Lattice& lattice() const { return lattice_; }
     [[nodiscard]] double mach() const { return mach_; }
@@ -106,11 +148,13 @@ private:
     Model model_;
     Lattice lattice_;
     double mach_ = 0.0;
+    SteadyOptions options_;
     double beta_pg_ = 1.0;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
     // Trefftz plane: normal wash at strip centres per unit strip circulation.
     Eigen::MatrixXd trefftz_;
-    std::vector<Eigen::Vector3d> mid_;  // bound-segment midpoints
+    std::vector<Eigen::Vector3d> mid_;  // force points on the bound segments (Lattice::bound_point)
+    std::vector<char> closure_row_;     // 1: row states zero net strip circulation (NOWAKE)
 };
 
 /// Set the wind-axis forces of a result and its body-axis forces to match.
