@@ -366,6 +366,14 @@ public:
     explicit CamberSlope(const Section& sec) {
         if (!sec.airfoil) return;
         const geometry::Airfoil& af = *sec.airfoil;
+        if (af.is_naca() && af.designation().family == geometry::NacaFamily::six_series) {
+            // The 6-series mean lines have logarithmic slopes at both ends: a table through
+            // x = 0 and 1 would spread those singular values over the end intervals, so the exact
+            // slope is taken at each control point instead (control points never lie at the
+            // ends).
+            exact_ = af;
+            return;
+        }
         std::vector<double> xu(camber_stations), slope(camber_stations);
         std::optional<Akima> line;
         if (!af.is_naca()) {
@@ -379,10 +387,14 @@ public:
         }
         table_.emplace(std::move(xu), std::move(slope));
     }
-    [[nodiscard]] double operator()(double x) const { return table_ ? table_->value(x) : 0.0; }
+    [[nodiscard]] double operator()(double x) const {
+        if (exact_) return exact_->camber_slope(std::clamp(x, 1e-6, 1.0 - 1e-6));
+        return table_ ? table_->value(x) : 0.0;
+    }
 
 private:
     std::optional<Akima> table_;
+    std::optional<geometry::Airfoil> exact_;
 };
 
 /// Rotate v about the unit axis k by angle t (Rodrigues).

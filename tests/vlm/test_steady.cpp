@@ -190,3 +190,38 @@ TEST(VlmSteady, BadInputIsReported) {
 }
 
 }  // namespace
+
+namespace {
+
+// Camber: a wing of aspect ratio 1000 at zero incidence. Thin-airfoil theory: the NACA 2412 mean
+// line has alpha_L0 = -2.077 deg, CL0 = 2 pi 0.03625 = 0.2278; the uniform-load (a = 1) mean line
+// of the NACA 64-215 carries its design lift coefficient 0.2 at zero angle of attack (Abbott & von
+// Doenhoff, Theory of Wing Sections, 1959, sec. 4.3 and 6.4).
+TEST(VlmSteady, CamberedSectionsMatchThinAirfoilTheory) {
+    struct Case {
+        const char* naca;
+        double cl0;
+    };
+    for (const Case c : {Case{"NACA 2412", 0.2278}, Case{"NACA 64-215", 0.2}}) {
+        Model m;
+        m.reference = {1000.0, 1000.0, 1.0, Eigen::Vector3d(0.25, 0, 0)};
+        Surface s;
+        s.name = "wing";
+        s.n_chord = 24;
+        s.n_span = 40;
+        s.y_duplicate = 0.0;
+        Section r, t;
+        r.chord = 1.0;
+        t.chord = 1.0;
+        t.leading_edge = Eigen::Vector3d(0, 500, 0);
+        r.airfoil = manta::geometry::Airfoil::naca(c.naca);
+        t.airfoil = r.airfoil;
+        s.sections = {r, t};
+        m.surfaces.push_back(s);
+        const SteadySolver solver(m, build_lattice(m), 0.0);
+        SCOPED_TRACE(c.naca);
+        EXPECT_NEAR(solver.solve(FlowState{}).CL, c.cl0, 0.02 * c.cl0);
+    }
+}
+
+}  // namespace
