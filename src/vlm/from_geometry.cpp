@@ -69,8 +69,9 @@ Model from_geometry(const geometry::AircraftGeometry& g, const Reference& refere
         s.n_chord = density.n_chord;
         s.chord_spacing = density.chord_spacing;
         s.n_span = 0;
-        // Each lifting surface is its own component (as AVL numbers surfaces by default), so
-        // the wing's trailing legs seen from the tail get the inter-component core.
+        // Each lifting surface is its own component (as AVL numbers surfaces by default; joined
+        // surfaces are merged below), so the wing's trailing legs seen from the tail get the
+        // inter-component core.
         s.component = static_cast<int>(m.surfaces.size()) + 1;
         if (ls.symmetric) s.y_duplicate = 0.0;
         const double semi = ls.semi_span();
@@ -110,6 +111,27 @@ Model from_geometry(const geometry::AircraftGeometry& g, const Reference& refere
         }
         m.surfaces.push_back(std::move(s));
     }
+    // Surfaces that touch (a T-tail's fin and tailplane) are one component, so each sees the
+    // other's vortices without the inter-component core: union of surfaces with section leading
+    // or trailing edges closer than 5 % of the smaller chord there.
+    const std::size_t n = m.surfaces.size();
+    std::vector<std::size_t> root(n);
+    for (std::size_t i = 0; i < n; ++i) root[i] = i;
+    auto find = [&](std::size_t i) {
+        while (root[i] != i) i = root[i] = root[root[i]];
+        return i;
+    };
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j)
+            for (const Section& a : m.surfaces[i].sections)
+                for (const Section& b : m.surfaces[j].sections) {
+                    const Eigen::Vector3d ta = a.leading_edge + a.chord * Eigen::Vector3d::UnitX();
+                    const Eigen::Vector3d tb = b.leading_edge + b.chord * Eigen::Vector3d::UnitX();
+                    const double tol = 0.05 * std::min(a.chord, b.chord);
+                    if ((a.leading_edge - b.leading_edge).norm() < tol || (ta - tb).norm() < tol)
+                        root[find(j)] = find(i);
+                }
+    for (std::size_t i = 0; i < n; ++i) m.surfaces[i].component = static_cast<int>(find(i)) + 1;
     return m;
 }
 
