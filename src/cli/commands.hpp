@@ -25,6 +25,7 @@ void add_modes(CLI::App& app, Action& action);
 void add_simulate(CLI::App& app, Action& action);
 void add_demo(CLI::App& app, Action& action);
 void add_vlm(CLI::App& app, Action& action);
+void add_vlm_unsteady(CLI::App& app, Action& action);
 
 /// Options every aircraft command shares: the aircraft file and its loading case.
 struct AircraftOptions {

@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
     cli::add_simulate(app, action);
     cli::add_demo(app, action);
     cli::add_vlm(app, action);
+    cli::add_vlm_unsteady(app, action);
 
     try {
         app.parse(argc, argv);

@@ -38,7 +38,7 @@ check "manta --help" 0 "$manta" --help
 contains "help lists subcommands" "$work/out.txt" "atmosphere"
 check "manta --version" 0 "$manta" --version
 contains "version text" "$work/out.txt" "manta [0-9]+\.[0-9]+\.[0-9]+"
-for sub in atmosphere "config check" trim modes simulate demo vlm; do
+for sub in atmosphere "config check" trim modes simulate demo vlm vlm-unsteady vlm-oscillation; do
     # shellcheck disable=SC2086
     check "manta $sub --help" 0 "$manta" $sub --help
 done
@@ -106,6 +106,21 @@ json_ok "vlm avl json"
 printf 'Plate\n0.0\n0 0 0.0\n4.0 1.0 4.0\n0.25 0 0\nSURFACE\nWing\n4 1.0 8 1.0\nSECTION\n0 0 0 -1 0\nSECTION\n0 2 0 1 0\n' > "$work/bad.avl"
 check "vlm bad avl chord" 2 "$manta" vlm --aircraft "$work/bad.avl"
 contains "bad chord names file and line" "$work/err.txt" "bad.avl:[0-9]+"
+
+# vlm-unsteady and vlm-oscillation (coarse lattices)
+{ echo '# v0: 100.0'; echo 't,x_ref,y_ref,z_ref,phi,theta,psi,mode_elevator,mode_aileron,mode_rudder'
+  for i in 0 1 2 3 4 5 6 7 8 9 10; do echo "0.0$i,0,0,0,0,0.05,0,0,0,0" | sed 's/0.010,/0.10,/'; done; } > "$work/motion.csv"
+check "vlm-unsteady" 0 "$manta" vlm-unsteady --aircraft "$work/plate.avl" --motion "$work/motion.csv" --out "$work/uvlm" --json
+json_ok "vlm-unsteady json"
+contains "uvlm history" "$work/uvlm/coefficients.csv" "^t,CL,CD,CY,Cl,Cm,Cn"
+contains "uvlm wake" "$work/uvlm/wake.vtu" "UnstructuredGrid"
+printf 't,x_ref,y_ref,z_ref,phi,theta,psi,mode_elevator,mode_aileron,mode_rudder\n0,0,0,0,0,0,0,0,0,0\n0,0,0,0,0,0,0,0,0,0\n' > "$work/bad_motion.csv"
+check "vlm-unsteady non-monotonic time" 2 "$manta" vlm-unsteady --aircraft "$work/plate.avl" --motion "$work/bad_motion.csv" --out "$work/uvlm2" --speed 100
+contains "motion error names line" "$work/err.txt" "bad_motion.csv:3"
+check "vlm-oscillation" 0 "$manta" vlm-oscillation --aircraft "$work/plate.avl" --axis roll --k 0.05 --steps-per-period 16 --json
+json_ok "vlm-oscillation json"
+contains "oscillation out of phase" "$work/out.txt" '"out_of_phase_fourier"'
+check "vlm-oscillation bad axis" 2 "$manta" vlm-oscillation --aircraft "$work/plate.avl" --axis spin
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,0 +1,268 @@
+/// `manta vlm-unsteady`: the unsteady vortex lattice along a motion file; `manta vlm-oscillation`:
+/// dynamic derivatives by forced harmonic oscillation.
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "manta/aero/motion.hpp"
+#include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
+#include "manta/core/units.hpp"
+#include "manta/vlm/dynamic.hpp"
+#include "manta/vlm/unsteady.hpp"
+
+namespace manta::cli {
+
+namespace {
+
+struct UnsteadyArgs {
+    std::string aircraft, motion, out;
+    std::optional<double> dt, speed, mach;
+    double wake_length = 20.0;
+    bool impulsive = false;
+    bool free_wake = false;
+    int n_chord = vlm::LatticeDensity{}.n_chord;
+    double strip_width = vlm::LatticeDensity{}.strip_width;
+    bool json = false;
+};
+
+std::string history_csv(const vlm::UnsteadyHistory& h) {
+    std::string s = "t,CL,CD,CY,Cl,Cm,Cn,CX,CZ,alpha,beta,airspeed,CL_added_mass,wake_rows\n";
+    for (const auto& st : h.steps) {
+        s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", core::format_exact(st.t),
+                         core::format_exact(st.CL), core::format_exact(st.CD),
+                         core::format_exact(st.CY), core::format_exact(st.body.Cl),
+                         core::format_exact(st.body.Cm), core::format_exact(st.body.Cn),
+                         core::format_exact(st.body.CX), core::format_exact(st.body.CZ),
+                         core::format_exact(st.alpha), core::format_exact(st.beta),
+                         core::format_exact(st.airspeed), core::format_exact(st.CL_added_mass),
+                         st.wake_rows);
+    }
+    return s;
+}
+
+void run_unsteady(const UnsteadyArgs& a) {
+    using clock = std::chrono::steady_clock;
+    vlm::LatticeDensity density;
+    density.n_chord = a.n_chord;
+    density.strip_width = a.strip_width;
+    const VlmInput in = load_vlm_input(a.aircraft, density);
+    const aero::Motion motion = aero::read_motion(a.motion);
+    vlm::UnsteadyOptions o;
+    if (a.dt) o.dt = *a.dt;
+    o.speed = a.speed;
+    if (a.mach)
+        o.mach = a.mach;
+    else if (motion.metadata.mach)
+        o.mach = motion.metadata.mach;
+    o.wake_length = a.wake_length;
+    o.start = a.impulsive ? vlm::StartMode::impulsive : vlm::StartMode::steady;
+    o.wake = a.free_wake ? vlm::WakeModel::free : vlm::WakeModel::prescribed;
+    const std::filesystem::path out(a.out);
+    std::filesystem::create_directories(out);
+    vlm::UnsteadySolver solver(in.model, vlm::build_lattice(in.model), o);
+    const auto t0 = clock::now();
+    auto last = t0;
+    // A live status line on a terminal; a line every 10 s otherwise (logs).
+    const bool tty = isatty(fileno(stderr)) != 0;
+    const auto every = tty ? std::chrono::seconds(1) : std::chrono::seconds(10);
+    const vlm::UnsteadyHistory h = solver.run(motion, [&](const vlm::UnsteadySolver& s) {
+        const auto now = clock::now();
+        if (now - last < every) return;
+        last = now;
+        const double done = static_cast<double>(s.current().index) / std::max(1, s.n_steps());
+        const double spent = std::chrono::duration<double>(now - t0).count();
+        std::fprintf(stderr, "%sstep %d/%d  t %.3f s  CL %.4f  %.0f%%  about %.0f s left%s",
+                     tty ? "\r" : "", s.current().index, s.n_steps(), s.current().t, s.current().CL,
+                     100 * done, done > 0 ? spent * (1 - done) / done : 0.0, tty ? "   " : "\n");
+    });
+    if (tty && last != t0) std::fprintf(stderr, "\n");
+    const double wall = std::chrono::duration<double>(clock::now() - t0).count();
+    core::write_file_atomic(out / "coefficients.csv", history_csv(h));
+    vlm::write_vtu(out / "wake.vtu", solver.lattice(), solver.wake());
+    nlohmann::json j;
+    j["aircraft"] = a.aircraft;
+    j["motion"] = a.motion;
+    j["steps"] = static_cast<int>(h.steps.size()) - 1;
+    j["dt"] = h.dt;
+    j["speed"] = h.speed;
+    j["mach"] = h.mach;
+    j["max_wake_rows"] = h.max_wake_rows;
+    j["vortices"] = solver.lattice().size();
+    j["wall_time_s"] = wall;
+    j["files"] = {(out / "coefficients.csv").string(), (out / "wake.vtu").string()};
+    const auto& e = h.steps.back();
+    j["final"] = {{"t", e.t},        {"CL", e.CL},      {"CD", e.CD},     {"CY", e.CY},
+                  {"Cl", e.body.Cl}, {"Cm", e.body.Cm}, {"Cn", e.body.Cn}};
+    core::write_file_atomic(out / "summary.json", j.dump(2) + "\n");
+    if (a.json) {
+        print_json(j);
+        return;
+    }
+    fmt::print("{} steps of {:.5f} s ({} vortices, wake up to {} rows) in {:.1f} s\n",
+               h.steps.size() - 1, h.dt, solver.lattice().size(), h.max_wake_rows, wall);
+    fmt::print("wrote {}, {}, {}\n", (out / "coefficients.csv").string(),
+               (out / "wake.vtu").string(), (out / "summary.json").string());
+}
+
+struct OscillationArgs {
+    std::string aircraft;
+    std::string axis = "pitch";
+    double k = 0.05;
+    double amplitude_deg = 1.0;
+    double alpha_deg = 0.0;
+    double mach = 0.0;
+    int periods = 3;
+    int steps_per_period = 48;
+    int n_chord = 6;
+    double strip_width = 0.02;
+    bool json = false;
+};
+
+void run_oscillation(const OscillationArgs& a) {
+    vlm::LatticeDensity density;
+    density.n_chord = a.n_chord;
+    density.strip_width = a.strip_width;
+    const VlmInput in = load_vlm_input(a.aircraft, density);
+    vlm::ForcedOscillationOptions o;
+    if (a.axis == "pitch")
+        o.axis = aero::OscillationAxis::pitch;
+    else if (a.axis == "roll")
+        o.axis = aero::OscillationAxis::roll;
+    else if (a.axis == "yaw")
+        o.axis = aero::OscillationAxis::yaw;
+    else if (a.axis == "plunge")
+        o.axis = aero::OscillationAxis::plunge;
+    else
+        throw InputError(fmt::format(
+            "vlm-oscillation: --axis '{}'; expected pitch, roll, yaw or plunge", a.axis));
+    o.reduced_frequency = a.k;
+    o.amplitude = a.amplitude_deg * core::deg_to_rad;
+    o.alpha0 = a.alpha_deg * core::deg_to_rad;
+    o.n_periods = a.periods;
+    o.steps_per_period = a.steps_per_period;
+    o.solver.mach = a.mach;
+    const vlm::ForcedOscillationResult r =
+        vlm::forced_oscillation(in.model, vlm::build_lattice(in.model), o);
+    static const char* names[6] = {"CL", "CD", "CY", "Cl", "Cm", "Cn"};
+    nlohmann::json j;
+    j["aircraft"] = a.aircraft;
+    j["axis"] = a.axis;
+    j["reduced_frequency"] = a.k;
+    j["amplitude"] = o.amplitude;
+    j["alpha0"] = o.alpha0;
+    j["mach"] = a.mach;
+    j["omega"] = r.omega;
+    for (int c = 0; c < 6; ++c) {
+        const auto& x = r.coefficients[static_cast<std::size_t>(c)];
+        j["coefficients"][names[c]] = {{"mean", x.mean},
+                                       {"in_phase_fourier", x.fourier.in_phase},
+                                       {"out_of_phase_fourier", x.fourier.out_of_phase},
+                                       {"in_phase_regression", x.regression.in_phase},
+                                       {"out_of_phase_regression", x.regression.out_of_phase},
+                                       {"r_squared", x.regression.r_squared}};
+    }
+    if (a.json) {
+        print_json(j);
+        return;
+    }
+    fmt::print("{} oscillation, k = {}, amplitude {} deg, alpha0 {} deg, Mach {}\n", a.axis, a.k,
+               a.amplitude_deg, a.alpha_deg, a.mach);
+    fmt::print("{:>4} {:>12} {:>14} {:>14} {:>14} {:>14}\n", "", "mean", "in-phase (F)",
+               "out-phase (F)", "in-phase (R)", "out-phase (R)");
+    for (int c = 0; c < 6; ++c) {
+        const auto& x = r.coefficients[static_cast<std::size_t>(c)];
+        fmt::print("{:>4} {:12.5f} {:14.5f} {:14.5f} {:14.5f} {:14.5f}\n", names[c], x.mean,
+                   x.fourier.in_phase, x.fourier.out_of_phase, x.regression.in_phase,
+                   x.regression.out_of_phase);
+    }
+    fmt::print(
+        "(F: Fourier over the last {} periods; R: linear regression; see "
+        "docs/forced-oscillation.md for what each axis measures)\n",
+        a.periods - 1);
+}
+
+}  // namespace
+
+void add_vlm_unsteady(CLI::App& app, Action& action) {
+    auto* cmd = app.add_subcommand(
+        "vlm-unsteady",
+        "Unsteady vortex lattice along a motion file (docs/formats.md#motion-file): writes\n"
+        "coefficients.csv (history), wake.vtu (final wake) and summary.json into --out.");
+    auto a = std::make_shared<UnsteadyArgs>();
+    cmd->add_option("--aircraft", a->aircraft, "Aircraft file: MANTA YAML or AVL geometry (.avl)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--motion", a->motion, "Motion file (CSV)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--out", a->out, "Output folder")->required();
+    cmd->add_option("--dt", a->dt, "Time step [s] (default: one chordwise panel per step)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--speed", a->speed, "Entry free-stream speed v0 [m/s] (default: the motion's)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--mach", a->mach, "Mach number (default: the motion's, else 0)")
+        ->check(CLI::Range(0.0, 0.95));
+    cmd->add_option("--wake-length", a->wake_length, "Wake kept [reference chords] (default 20)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("--impulsive", a->impulsive,
+                  "Impulsive start (default: from the steady solution)");
+    cmd->add_flag("--free-wake", a->free_wake, "Force-free wake (default: convected with v0)");
+    cmd->add_option("--n-chord", a->n_chord, "Chordwise vortices per strip (MANTA files)")
+        ->check(CLI::Range(1, 100));
+    cmd->add_option("--strip-width", a->strip_width, "Strip width / span (MANTA files)")
+        ->check(CLI::Range(1e-4, 0.5));
+    cmd->add_flag("--json", a->json, "Print the summary as one JSON object");
+    cmd->callback([a, &action] {
+        action = [a]() -> int {
+            run_unsteady(*a);
+            return 0;
+        };
+    });
+
+    auto* osc = app.add_subcommand(
+        "vlm-oscillation",
+        "Dynamic derivatives by forced harmonic oscillation of the unsteady vortex lattice:\n"
+        "in-phase and out-of-phase derivatives of the six coefficients by Fourier analysis and by\n"
+        "linear regression (docs/forced-oscillation.md).");
+    auto b = std::make_shared<OscillationArgs>();
+    osc->add_option("--aircraft", b->aircraft, "Aircraft file: MANTA YAML or AVL geometry (.avl)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    osc->add_option("--axis", b->axis, "pitch, roll, yaw or plunge (default pitch)");
+    osc->add_option("--k", b->k, "Reduced frequency (c/2V pitch and plunge, b/2V roll and yaw)")
+        ->check(CLI::PositiveNumber);
+    osc->add_option("--amplitude-deg", b->amplitude_deg, "Amplitude [deg] (default 1)")
+        ->check(CLI::PositiveNumber);
+    osc->add_option("--alpha-deg", b->alpha_deg, "Mean angle of attack [deg] (default 0)");
+    osc->add_option("--mach", b->mach, "Mach number (default 0)")->check(CLI::Range(0.0, 0.95));
+    osc->add_option("--periods", b->periods, "Periods simulated, the first discarded (default 3)")
+        ->check(CLI::Range(2, 100));
+    osc->add_option("--steps-per-period", b->steps_per_period, "Time steps per period (default 48)")
+        ->check(CLI::Range(8, 10000));
+    osc->add_option("--n-chord", b->n_chord,
+                    "Chordwise vortices per strip (MANTA files; default 6)")
+        ->check(CLI::Range(1, 100));
+    osc->add_option("--strip-width", b->strip_width,
+                    "Strip width / span (MANTA files; default 0.02)")
+        ->check(CLI::Range(1e-4, 0.5));
+    osc->add_flag("--json", b->json, "Print one JSON object");
+    osc->callback([b, &action] {
+        action = [b]() -> int {
+            run_oscillation(*b);
+            return 0;
+        };
+    });
+}
+
+}  // namespace manta::cli
