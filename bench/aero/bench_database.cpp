@@ -74,6 +74,21 @@ void BM_multilinear_10pct_out_of_range(benchmark::State& state) {
 }
 BENCHMARK(BM_multilinear_10pct_out_of_range);
 
+// The single pass of the equations of motion: coefficients and their alpha-dot/beta-dot partial
+// derivatives together (AeroDatabase::evaluate_with_angle_rates).
+void BM_multilinear_with_angle_rates(benchmark::State& state) {
+    const AeroDatabase db = test::ranger_like();
+    const auto qs = random_queries();
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const auto e =
+            db.evaluate_with_angle_rates(qs[i++ & (n_queries - 1)], Interpolation::multilinear);
+        benchmark::DoNotOptimize(e);
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_multilinear_with_angle_rates);
+
 void BM_c1(benchmark::State& state) {
     const AeroDatabase db = test::ranger_like();
     run(state, db, Interpolation::c1);

@@ -3,7 +3,7 @@
 // code from the same derivatives if the file is absent). Table look-ups are in the loop and the
 // states vary (4096 states drawn once, cycled), so no cache or branch predictor sees one state.
 //
-//   build-sim/bench/flightdyn/bench_flightdyn_eom --benchmark_repetitions=5
+//   build/bench/flightdyn/bench_flightdyn_eom --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true
 //
 // Figures to read: items_per_second of BM_euler_rhs (derivative evaluations per second; the
@@ -78,7 +78,8 @@ void BM_euler_rhs(benchmark::State& state) {
         benchmark::DoNotOptimize(d);
     }
     state.SetItemsProcessed(state.iterations());
-    state.SetLabel(m.angle_rate_terms ? "alpha-dot terms (implicit solve)" : "no alpha-dot terms");
+    state.SetLabel(m.angle_rate_terms ? "alpha-dot terms (implicit solve, one table pass)"
+                                      : "no alpha-dot terms");
 }
 BENCHMARK(BM_euler_rhs);
 
@@ -98,7 +99,8 @@ void BM_quaternion_rhs(benchmark::State& state) {
 BENCHMARK(BM_quaternion_rhs);
 
 /// The same tables without the implicit alpha-dot/beta-dot solve (as if they had no such
-/// columns): one table evaluation per derivative instead of three.
+/// columns): a plain table evaluation instead of one with the angle-rate partial derivatives, and
+/// no 2x2 solve.
 void BM_euler_rhs_no_alphadot(benchmark::State& state) {
     fd::FlightModel m = ranger();
     m.angle_rate_terms = false;

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "manta/aero/database.hpp"
+#include "manta/core/fastmath.hpp"
 
 namespace manta::aero::detail {
 
@@ -83,38 +84,6 @@ void record_out_of_range(const AeroDatabase::Impl& impl, int g, double x, bool a
     }
 }
 
-// ---------------------------------------------------------------- sine and cosine
-
-void sin_cos(double x, double& s, double& c) noexcept {
-    if (!(std::abs(x) <= std::numbers::pi / 4)) {
-        s = std::sin(x);
-        c = std::cos(x);
-        return;
-    }
-    // Minimax polynomials of fdlibm's __kernel_sin and __kernel_cos (Sun Microsystems, 1993;
-    // freely distributable), error below one ulp on |x| <= pi/4.
-    constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03,
-                     S3 = -1.98412698298579493134e-04, S4 = 2.75573137070700676789e-06,
-                     S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
-    constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
-                     C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
-                     C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
-    if (std::abs(x) < 0x1p-27) {
-        // sin x = x and cos x = 1 to rounding (and the sign of a zero survives).
-        s = x;
-        c = 1.0;
-        return;
-    }
-    const double z = x * x;
-    const double rs = S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)));
-    s = x + z * x * (S1 + z * rs);
-    const double z2 = z * z;
-    const double rc = z * (C1 + z * (C2 + z * C3)) + z2 * z2 * (C4 + z * (C5 + z * C6));
-    const double hz = 0.5 * z;
-    const double w = 1.0 - hz;
-    c = w + (((1.0 - w) - hz) + z * rc);
-}
-
 // ---------------------------------------------------------------- multilinear, double
 
 namespace {
@@ -133,9 +102,11 @@ namespace {
 /// time: every loop unrolls, the column sums stay in registers, and Eigen's fixed-size arrays
 /// turn each corner's row into SIMD pairs (rows are stored padded to an even length). Bit k of a
 /// corner index selects t_k (else 1 - t_k) along active axis k. `Rated` tables multiply each
-/// column by its factor; the others add straight into their slots.
+/// column by its factor (and give the angle-rate columns to `angle_rate_out` when asked); the
+/// others add straight into their slots.
 template <int D, int NC, bool Rated>
-void multilinear_kernel(const TablePlan& tp, const Loc* loc, const double* factors, double* out) {
+void multilinear_kernel(const TablePlan& tp, const Loc* loc, const double* factors, double* out,
+                        [[maybe_unused]] double* angle_rate_out) {
     constexpr int n_corners = 1 << D;
     constexpr int NS = NC + NC % 2;
     using Row = Eigen::Array<double, NS, 1>;
@@ -181,10 +152,21 @@ void multilinear_kernel(const TablePlan& tp, const Loc* loc, const double* facto
             out[tp.slot[k]] += acc[0][j];
         }
     }
+    if constexpr (Rated) {
+        if (angle_rate_out != nullptr) {
+#pragma GCC unroll 16
+            for (int j = 0; j < NC; ++j) {
+                const auto k = static_cast<std::size_t>(j);
+                const int r = tp.factor[k] - first_angle_rate;
+                if (r >= 0) angle_rate_out[r * n_slots + tp.slot[k]] += acc[0][j];
+            }
+        }
+    }
 }
 
 /// Any shape: the same sum with run-time loops.
-void multilinear_any(const TablePlan& tp, const Loc* loc, const double* factors, double* out) {
+void multilinear_any(const TablePlan& tp, const Loc* loc, const double* factors, double* out,
+                     double* angle_rate_out) {
     const int d = tp.n_active;
     const int n_corners = 1 << d;
     std::array<double, std::size_t{1} << n_axes> w;
@@ -211,6 +193,14 @@ void multilinear_any(const TablePlan& tp, const Loc* loc, const double* factors,
         for (std::size_t j = 0; j < nc; ++j) acc[j] += w[c] * p[j];
     }
     for (std::size_t j = 0; j < nc; ++j) out[tp.slot[j]] += acc[j] * factors[tp.factor[j]];
+    if (angle_rate_out != nullptr && tp.rated) {
+        for (std::size_t j = 0; j < nc; ++j) {
+            const int r = tp.factor[j] - first_angle_rate;
+            if (r >= 0 && tp.factor[j] != unit_factor) {
+                angle_rate_out[r * n_slots + tp.slot[j]] += acc[j];
+            }
+        }
+    }
 }
 
 // Specialised shapes: static and control tables (unit factors) up to four active axes and six
@@ -236,8 +226,11 @@ constexpr auto unit_kernels =
 constexpr auto rated_kernels =
     kernel_table<true, max_rated_columns>(std::make_integer_sequence<int, max_rated_axes + 1>{});
 
+/// The six slots by the specialised kernels; with `angle_rate_out` (n_angle_rates * n_slots
+/// doubles, zeroed by the caller) also their partial derivatives with respect to the angle rates.
 std::array<double, n_slots> multilinear_slots(const AeroDatabase::Impl& impl,
-                                              const std::array<double, n_inputs>& x) {
+                                              const std::array<double, n_inputs>& x,
+                                              double* angle_rate_out) {
     const Plan& plan = impl.plan;
     std::array<Loc, max_grids> loc;
     const std::size_t n_grids = plan.grids.size();
@@ -256,7 +249,7 @@ std::array<double, n_slots> multilinear_slots(const AeroDatabase::Impl& impl,
                                                      x[n_axes + 3], x[n_axes + 4], 1.0};
     std::array<double, n_slots> out{};
     for (const TablePlan& tp : plan.tables)
-        tp.multilinear(tp, loc.data(), factors.data(), out.data());
+        tp.multilinear(tp, loc.data(), factors.data(), out.data(), angle_rate_out);
     return out;
 }
 
@@ -474,24 +467,44 @@ SlotSums<Grad> stencil_slots(const AeroDatabase::Impl& impl, const std::array<do
 
 }  // namespace
 
-BodyCoefficients<double> evaluate_double(const AeroDatabase::Impl& impl, const AeroQuery<double>& q,
-                                         Interpolation method) {
+namespace {
+
+/// d slot / d (alphadot, betadot): the angle-rate columns of the dynamic table, as
+/// angle_rate_out of the multilinear kernels gives them.
+using RatePartials = std::array<double, n_angle_rates * n_slots>;
+
+/// The six slots at `q` (database force axes), counted as one evaluation; with `rates` also
+/// their partial derivatives with respect to alphadot and betadot. C1 takes them from the
+/// gradient sums, whose values are those of the plain sums (the same operations on the values).
+std::array<double, n_slots> slots_double(const AeroDatabase::Impl& impl, const AeroQuery<double>& q,
+                                         Interpolation method, RatePartials* rates) {
     impl.evaluations.add();
     const std::array<double, n_inputs> x = {q.alpha,   q.beta,          q.mach,        q.elevator,
                                             q.aileron, q.rudder,        q.p_hat,       q.q_hat,
                                             q.r_hat,   q.alpha_dot_hat, q.beta_dot_hat};
-    std::array<double, n_slots> s;
     if (method == Interpolation::multilinear) {
-        s = multilinear_slots(impl, x);
-    } else {
-        s = stencil_slots<false>(impl, x, method).value;
+        if (rates == nullptr) return multilinear_slots(impl, x, nullptr);
+        // Zeroed by Eigen's packet stores: `{}` becomes a `rep stos`, whose start-up is slow.
+        Eigen::Map<Eigen::Array<double, n_angle_rates * n_slots, 1>>(rates->data()).setZero();
+        return multilinear_slots(impl, x, rates->data());
     }
+    if (rates == nullptr) return stencil_slots<false>(impl, x, method).value;
+    const SlotSums<true> s = stencil_slots<true>(impl, x, method);
+    for (std::size_t r = 0; r < n_angle_rates; ++r) {
+        for (std::size_t k = 0; k < n_slots; ++k) {
+            (*rates)[r * n_slots + k] = s.gradient[k][n_axes + first_angle_rate + r];
+        }
+    }
+    return s.value;
+}
+
+/// Body-axis coefficients of six slots: body_from_wind (types.hpp) for wind-axis forces, with the
+/// sine and cosine of the angles given. Also applies to slot derivatives, the rotation being
+/// linear.
+BodyCoefficients<double> body_of_slots(const double* s, bool wind, double sa, double ca, double sb,
+                                       double cb) {
     BodyCoefficients<double> b;
-    if (impl.plan.wind) {
-        // body_from_wind (types.hpp), with a sine and cosine that are cheap for |angle| <= pi/4.
-        double sa = 0.0, ca = 1.0, sb = 0.0, cb = 1.0;
-        sin_cos(q.alpha, sa, ca);
-        sin_cos(q.beta, sb, cb);
+    if (wind) {
         const double CL = s[0], CD = s[1], CY = s[2];
         b.CX = -CD * ca * cb - CY * ca * sb + CL * sa;
         b.CY = -CD * sb + CY * cb;
@@ -505,6 +518,19 @@ BodyCoefficients<double> evaluate_double(const AeroDatabase::Impl& impl, const A
     b.Cm = s[4];
     b.Cn = s[5];
     return b;
+}
+
+}  // namespace
+
+BodyCoefficients<double> evaluate_double(const AeroDatabase::Impl& impl, const AeroQuery<double>& q,
+                                         Interpolation method) {
+    const std::array<double, n_slots> s = slots_double(impl, q, method, nullptr);
+    double sa = 0.0, ca = 1.0, sb = 0.0, cb = 1.0;
+    if (impl.plan.wind) {
+        core::sin_cos(q.alpha, sa, ca);
+        core::sin_cos(q.beta, sb, cb);
+    }
+    return body_of_slots(s.data(), impl.plan.wind, sa, ca, sb, cb);
 }
 
 // ---------------------------------------------------------------- jets (first-order AD)
@@ -523,8 +549,8 @@ std::array<Jet, n_slots> evaluate_jets(const AeroDatabase::Impl& impl,
     // F_body = R(alpha, beta) (CL, CD, CY) with R from body_from_wind (types.hpp); the partials
     // add dR/dalpha and dR/dbeta times the wind-axis forces.
     double sa = 0.0, ca = 1.0, sb = 0.0, cb = 1.0;
-    sin_cos(x[0], sa, ca);
-    sin_cos(x[1], sb, cb);
+    core::sin_cos(x[0], sa, ca);
+    core::sin_cos(x[1], sb, cb);
     const double R[3][3] = {{sa, -ca * cb, -ca * sb}, {0.0, -sb, cb}, {-ca, -sa * cb, -sa * sb}};
     const double Ra[3][3] = {{ca, sa * cb, sa * sb}, {0.0, 0.0, 0.0}, {sa, -ca * cb, -ca * sb}};
     const double Rb[3][3] = {{0.0, ca * sb, -ca * cb}, {0.0, -cb, -sb}, {0.0, sa * sb, -sa * cb}};
@@ -545,3 +571,25 @@ std::array<Jet, n_slots> evaluate_jets(const AeroDatabase::Impl& impl,
 }
 
 }  // namespace manta::aero::detail
+
+namespace manta::aero {
+
+AngleRateExpansion AeroDatabase::evaluate_with_angle_rates(const AeroQuery<double>& q,
+                                                           Interpolation method) const {
+    const Impl& impl = *impl_;
+    detail::RatePartials rates;
+    const std::array<double, detail::n_slots> s = detail::slots_double(impl, q, method, &rates);
+    double sa = 0.0, ca = 1.0, sb = 0.0, cb = 1.0;
+    if (impl.plan.wind) {
+        core::sin_cos(q.alpha, sa, ca);
+        core::sin_cos(q.beta, sb, cb);
+    }
+    const bool wind = impl.plan.wind;
+    AngleRateExpansion e;
+    e.value = detail::body_of_slots(s.data(), wind, sa, ca, sb, cb);
+    e.d_alpha_dot_hat = detail::body_of_slots(rates.data(), wind, sa, ca, sb, cb);
+    e.d_beta_dot_hat = detail::body_of_slots(rates.data() + detail::n_slots, wind, sa, ca, sb, cb);
+    return e;
+}
+
+}  // namespace manta::aero

@@ -23,8 +23,83 @@ void finalize(FlightModel& model) {
         }
     }
     model.angle_rate_terms = model.alpha_dot_terms || model.beta_dot_terms;
+    model.inertia_inverse = model.mass.inertia.inverse();
+    model.inertia_inverse_of = model.mass.inertia;
     validate(model);
 }
+
+namespace detail {
+
+Loads<double> consistent_loads_affine(const FlightModel& m, double h, const Vec3<double>& v_body,
+                                      double airspeed, double alpha, double beta,
+                                      const Vec3<double>& w, const Controls<double>& u,
+                                      const Vec3<double>& gravity_body) {
+    // Atmosphere and thrust do not depend on the angle rates.
+    Loads<double> L = propulsive_loads(m, h, airspeed, alpha, beta, u);
+    const double uw2 = v_body.x() * v_body.x() + v_body.z() * v_body.z();
+    if (!m.angle_rate_terms || !m.aero || !(airspeed > 1e-9) || !(uw2 > 1e-18)) {
+        add_aero_loads(m, L, w, u, 0.0, 0.0);
+        return L;
+    }
+    // Coefficients at zero angle rates and their slopes in alpha_dot_hat, beta_dot_hat.
+    const aero::AeroQuery<double> q = aero_query(m, L, w, u, 0.0, 0.0);
+    const aero::AngleRateExpansion e = m.aero->evaluate_with_angle_rates(q, m.interpolation);
+    const double inv2V = 0.5 / L.airspeed;
+    // alpha_dot_hat and beta_dot_hat per rad/s of alpha_dot and beta_dot (as aero_query has them).
+    const double ka = m.reference.chord * inv2V, kb = m.reference.span * inv2V;
+    const double qS = L.dynamic_pressure * m.reference.area;
+    // Aero force and moment at zero angle rates (F0, M0) and per rad/s of each rate (Fa, Ma and
+    // Fb, Mb): the differences La - L0, Lb - L0 of consistent_loads_passes.
+    // A rate whose flag is off is left out, as consistent_loads_passes leaves out its pass.
+    Vec3<double> F0, M0, Fa, Ma, Fb, Mb;
+    aero_force_moment(m, qS, e.value, F0, M0);
+    Fa.setZero();
+    Ma.setZero();
+    Fb.setZero();
+    Mb.setZero();
+    if (m.alpha_dot_terms) aero_force_moment(m, qS * ka, e.d_alpha_dot_hat, Fa, Ma);
+    if (m.beta_dot_terms) aero_force_moment(m, qS * kb, e.d_beta_dot_hat, Fb, Mb);
+    const Vec3<double> force0 = L.force_body + F0;
+    const Vec3<double> moment0 = L.moment_body + M0;
+    // The angle rates are linear in the body acceleration vd (angle_rates): alpha_dot =
+    // (u vd_z - w vd_x) / uw2, beta_dot = (vd_y V - v (v . vd) / V) / (V sqrt(uw2)).
+    const Vec3<double>& v = v_body;
+    const double V = std::sqrt(uw2 + v.y() * v.y());
+    const double inv_uw2 = 1.0 / uw2, inv_V = 1.0 / V, inv_Vq = 1.0 / (V * std::sqrt(uw2));
+    auto rates_of = [&](const Vec3<double>& vd, double& ad, double& bd) {
+        ad = (v.x() * vd.z() - v.z() * vd.x()) * inv_uw2;
+        const double Vd = (v.x() * vd.x() + v.y() * vd.y() + v.z() * vd.z()) * inv_V;
+        bd = (vd.y() * V - v.y() * Vd) * inv_Vq;
+    };
+    const double inv_m = 1.0 / m.mass.mass;
+    double a0 = 0.0, b0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;
+    rates_of(velocity_rate(m, force0, gravity_body, v_body, w), a0, b0);
+    if (m.alpha_dot_terms) rates_of(Vec3<double>(Fa * inv_m), a1, b1);
+    if (m.beta_dot_terms) rates_of(Vec3<double>(Fb * inv_m), a2, b2);
+    // (I - K) x = f0 with K = [[a1, a2], [b1, b2]].
+    const double k11 = 1.0 - a1, k12 = -a2, k21 = -b1, k22 = 1.0 - b2;
+    const double inv_det = 1.0 / (k11 * k22 - k12 * k21);
+    const double ad = (a0 * k22 - k12 * b0) * inv_det;
+    const double bd = (k11 * b0 - k21 * a0) * inv_det;
+    L.force_body = force0 + ad * Fa + bd * Fb;
+    L.moment_body = moment0 + ad * Ma + bd * Mb;
+    // The consistent alpha_dot_hat and beta_dot_hat.
+    const double xa = m.alpha_dot_terms ? ad * ka : 0.0;
+    const double xb = m.beta_dot_terms ? bd * kb : 0.0;
+    auto& C = L.coefficients;
+    const auto& C0 = e.value;
+    const auto& Ca = e.d_alpha_dot_hat;
+    const auto& Cb = e.d_beta_dot_hat;
+    C.CX = C0.CX + xa * Ca.CX + xb * Cb.CX;
+    C.CY = C0.CY + xa * Ca.CY + xb * Cb.CY;
+    C.CZ = C0.CZ + xa * Ca.CZ + xb * Cb.CZ;
+    C.Cl = C0.Cl + xa * Ca.Cl + xb * Cb.Cl;
+    C.Cm = C0.Cm + xa * Ca.Cm + xb * Cb.Cm;
+    C.Cn = C0.Cn + xa * Ca.Cn + xb * Cb.Cn;
+    return L;
+}
+
+}  // namespace detail
 
 void validate(const FlightModel& m) {
     const std::string who =

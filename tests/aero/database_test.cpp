@@ -17,6 +17,7 @@
 #include "manta/aero/database.hpp"
 #include "manta/core/autodiff.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/fastmath.hpp"
 
 namespace manta::aero {
 namespace {
@@ -594,6 +595,105 @@ TEST(AeroDatabaseEvaluate, SumsStaticControlsAndRates) {
     }
 }
 
+// evaluate_with_angle_rates: the value is evaluate()'s bit for bit, the partial derivatives are
+// the alphadot and betadot columns (rotated to body axes with the forces), and the pass counts
+// once, out-of-range queries included.
+TEST(AeroDatabaseEvaluate, AngleRatePartialsFromOnePass) {
+    const GridAxis alpha{Axis::alpha, linspace(-0.1, 0.3, 5)};
+    const GridAxis beta{Axis::beta, linspace(-0.2, 0.2, 3)};
+    const GridAxis mach{Axis::mach, {0.2, 0.4, 0.6}};
+    auto wavy = [](const std::vector<double>& p, int c) {
+        double v = 0.1 * (c + 1);
+        for (std::size_t k = 0; k < p.size(); ++k) v += std::sin(3.0 * p[k] + c + k) * 0.2;
+        return v;
+    };
+    auto rows = [&](int n) {
+        return [n, &wavy](const std::vector<double>& p) {
+            std::vector<double> r;
+            for (int c = 0; c < n; ++c) r.push_back(wavy(p, c));
+            return r;
+        };
+    };
+    std::vector<AeroDatabase> dbs;
+    for (const ForceAxes axes : {ForceAxes::body, ForceAxes::wind}) {
+        const auto& cols = axes == ForceAxes::body ? body_columns : wind_columns;
+        const std::string f1 = cols[0], f3 = cols[2];
+        std::vector<Table> tables;
+        tables.push_back(
+            make_table("static", TableKind::static_table, {alpha, mach, beta}, cols, rows(6)));
+        tables.push_back(make_table("elev", TableKind::control,
+                                    {alpha, {Axis::elevator, {-0.3, 0.0, 0.3}}}, {f1, f3, "Cm"},
+                                    rows(3)));
+        // Every rate, the angle rates on several coefficients (the specialised rated kernel).
+        tables.push_back(
+            make_table("dyn", TableKind::dynamic, {alpha, mach},
+                       {f1 + "_q", "Cm_q", "Cl_p", "Cn_r", f3 + "_alphadot", "Cm_alphadot",
+                        f1 + "_alphadot", "CY_betadot", "Cn_betadot", "Cl_betadot"},
+                       rows(10)));
+        dbs.emplace_back(DatabaseInfo{"t", "", ""}, axes, Extrapolation::linear, tables);
+        // Fourteen rate columns: the run-time kernel.
+        std::vector<std::string> wide;
+        for (const auto& c : cols) {
+            for (const char* r : {"p", "alphadot"}) wide.push_back(c + "_" + r);
+        }
+        wide.push_back("CY_betadot");
+        wide.push_back("Cn_betadot");
+        tables.back() = make_table("dyn", TableKind::dynamic, {alpha, mach}, wide, rows(14));
+        dbs.emplace_back(DatabaseInfo{"t", "", ""}, axes, Extrapolation::clamp, tables);
+    }
+    dbs.push_back(test::ranger_like());  // wind axes, alphadot columns only
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int outside = 0;  // queries that were counted out of range
+    for (std::size_t k = 0; k < dbs.size(); ++k) {
+        const AeroDatabase& db = dbs[k];
+        const bool has_beta_dot = k + 1 < dbs.size();
+        for (const auto method : {Interpolation::multilinear, Interpolation::c1}) {
+            SCOPED_TRACE("database " + std::to_string(k) + ", " + std::string(to_string(method)));
+            for (int n = 0; n < 200; ++n) {
+                AeroQuery<double> q;
+                q.alpha = 0.1 + 0.25 * u(rng);  // partly beyond the tables
+                q.beta = 0.25 * u(rng);
+                q.mach = 0.4 + 0.25 * u(rng);
+                q.elevator = 0.35 * u(rng);
+                q.p_hat = 0.05 * u(rng);
+                q.q_hat = 0.05 * u(rng);
+                q.r_hat = 0.05 * u(rng);
+                q.alpha_dot_hat = 0.02 * u(rng);
+                q.beta_dot_hat = 0.02 * u(rng);
+                db.reset_out_of_range();
+                const AngleRateExpansion e = db.evaluate_with_angle_rates(q, method);
+                const OutOfRangeReport once = db.out_of_range();
+                EXPECT_EQ(once.evaluations, 1u);
+                const auto c = test::as_array(db.evaluate(q, method));
+                EXPECT_EQ(db.out_of_range().total(), 2 * once.total());
+                outside += once.total() > 0 ? 1 : 0;
+                EXPECT_EQ(test::as_array(e.value), c);
+                // Affine in the angle rates: a finite step is the partial derivative exactly.
+                AeroQuery<double> qa = q, qb = q;
+                qa.alpha_dot_hat += 0.5;
+                qb.beta_dot_hat += 0.5;
+                const auto ca = test::as_array(db.evaluate(qa, method));
+                const auto cb = test::as_array(db.evaluate(qb, method));
+                const auto da = test::as_array(e.d_alpha_dot_hat);
+                const auto db_ = test::as_array(e.d_beta_dot_hat);
+                for (std::size_t i = 0; i < 6; ++i) {
+                    EXPECT_NEAR(ca[i] - c[i], 0.5 * da[i], 1e-14 * (1.0 + std::abs(c[i])));
+                    EXPECT_NEAR(cb[i] - c[i], 0.5 * db_[i], 1e-14 * (1.0 + std::abs(c[i])));
+                    if (!has_beta_dot) {
+                        EXPECT_EQ(db_[i], 0.0);
+                    }
+                }
+                EXPECT_NE(da[2], 0.0);  // CZ: the alphadot columns are there
+                if (has_beta_dot) {
+                    EXPECT_NE(db_[5], 0.0);  // Cn_betadot
+                }
+            }
+        }
+    }
+    EXPECT_GT(outside, 100);
+}
+
 TEST(AeroDatabaseEvaluate, WindForcesAreConvertedToBodyAxes) {
     const GridAxis alpha{Axis::alpha, linspace(-0.3, 0.5, 9)};
     const GridAxis beta{Axis::beta, linspace(-0.2, 0.2, 5)};
@@ -650,7 +750,8 @@ TEST(AeroDatabaseEvaluate, WindBodyRoundTrip) {
 }
 
 TEST(AeroDatabaseEvaluate, FastSineAndCosineWithinOneUlp) {
-    // The double path rotates wind forces with detail::sin_cos (fdlibm kernels on |x| <= pi/4).
+    // The double path rotates wind forces with core::sin_cos (fdlibm kernels on |x| <= pi/4;
+    // the reduction beyond is tested in tests/core/test_fastmath.cpp).
     auto ordered = [](double a) {  // doubles mapped to integers in the same order, -0 = +0
         const auto i = std::bit_cast<std::int64_t>(a);
         return i < 0 ? std::numeric_limits<std::int64_t>::min() - i : i;
@@ -663,19 +764,19 @@ TEST(AeroDatabaseEvaluate, FastSineAndCosineWithinOneUlp) {
         double x = u(rng);
         if (n % 3 == 0) x *= 1e-4;
         double s = 0.0, c = 0.0;
-        detail::sin_cos(x, s, c);
+        core::sin_cos(x, s, c);
         worst = std::max({worst, ulps(s, std::sin(x)), ulps(c, std::cos(x))});
     }
     EXPECT_LE(worst, 1);
     for (const double x : {0.0, -0.0, 1e-300, -1e-9, 1.0, -2.5, 100.0}) {
         double s = 0.0, c = 0.0;
-        detail::sin_cos(x, s, c);
+        core::sin_cos(x, s, c);
         EXPECT_LE(ulps(s, std::sin(x)), 1) << x;
         EXPECT_LE(ulps(c, std::cos(x)), 1) << x;
         EXPECT_EQ(std::signbit(s), std::signbit(std::sin(x))) << x;
     }
     double s = 0.0, c = 0.0;
-    detail::sin_cos(std::numeric_limits<double>::quiet_NaN(), s, c);
+    core::sin_cos(std::numeric_limits<double>::quiet_NaN(), s, c);
     EXPECT_TRUE(std::isnan(s) && std::isnan(c));
 }
 

@@ -120,6 +120,17 @@ struct DerivativeGrids {
     std::vector<double> rudder;    ///< [rad]
 };
 
+/// Body-axis coefficients at a query with their partial derivatives with respect to the
+/// non-dimensional angle rates. The coefficients are affine in alpha_dot_hat and beta_dot_hat
+/// (the dynamic table adds C_alphadot alpha_dot_hat + C_betadot beta_dot_hat), so
+/// C(a, b) = value + (a - q.alpha_dot_hat) d_alpha_dot_hat + (b - q.beta_dot_hat) d_beta_dot_hat
+/// for every a, b.
+struct AngleRateExpansion {
+    BodyCoefficients<double> value;            ///< at the query, exactly as evaluate() gives them
+    BodyCoefficients<double> d_alpha_dot_hat;  ///< dC / d alpha_dot_hat (the alphadot columns)
+    BodyCoefficients<double> d_beta_dot_hat;   ///< dC / d beta_dot_hat (the betadot columns)
+};
+
 class AeroDatabase {
 public:
     /// Validates: exactly one static table; at most one control table per control, containing
@@ -141,6 +152,13 @@ public:
     /// Body-axis coefficients at `q` (forces converted from wind axes if the tables are wind).
     template <class T>
     [[nodiscard]] BodyCoefficients<T> evaluate(const AeroQuery<T>& q, Interpolation method) const;
+
+    /// Plain-double evaluation that also returns the partial derivatives with respect to
+    /// alpha_dot_hat and beta_dot_hat, from the same table pass (one evaluation in the counters;
+    /// out-of-table queries counted as by evaluate). Lets the equations of motion solve for the
+    /// angle rates without evaluating the tables again.
+    [[nodiscard]] AngleRateExpansion evaluate_with_angle_rates(const AeroQuery<double>& q,
+                                                               Interpolation method) const;
 
     /// Counters of out-of-table queries since construction or the last reset (thread-safe).
     [[nodiscard]] OutOfRangeReport out_of_range() const;

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 #include "manta/core/error.hpp"
 #include "manta/core/scalar.hpp"
@@ -21,6 +22,9 @@ struct AtmosphereState {
     T speed_of_sound{0.0};         ///< [m/s]
     T dynamic_viscosity{0.0};      ///< [Pa s] (Sutherland's law, as in the 1976 standard)
     T geopotential_altitude{0.0};  ///< [m']
+    /// ln(sigma), sigma = density / us1976_constants::reference_density: the density ratio of
+    /// engine lapse laws, whose power sigma^n = exp(n ln sigma) then needs no logarithm.
+    T log_density_ratio{0.0};
 };
 
 namespace us1976_constants {
@@ -54,7 +58,26 @@ inline constexpr std::array<Layer, 7> layers = {{
 }};
 inline constexpr double h_top = 84852.0;     ///< top of the model [m']
 inline constexpr double h_bottom = -5000.0;  ///< lowest altitude accepted [m']
+/// Sea-level density as the standard prints it [kg/m^3]: the reference of density ratios.
+inline constexpr double reference_density = 1.225;
 }  // namespace us1976_constants
+
+namespace detail {
+/// ln(sigma) at each layer base, ln(p_base / (R T_base rho_ref)) (computed once).
+[[nodiscard]] inline const std::array<double, us1976_constants::layers.size()>&
+us1976_log_sigma_base() {
+    static const auto table = [] {
+        std::array<double, us1976_constants::layers.size()> c{};
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const auto& L = us1976_constants::layers[i];
+            c[i] = std::log(L.p_base / (us1976_constants::gas_constant * L.t_base *
+                                        us1976_constants::reference_density));
+        }
+        return c;
+    }();
+    return table;
+}
+}  // namespace detail
 
 /// Geopotential altitude [m'] from geometric altitude [m].
 template <class T>
@@ -87,14 +110,37 @@ template <class T>
     AtmosphereState<T> a;
     a.geopotential_altitude = h;
     const T dh = h - L.h_base;
-    if (L.lapse == 0.0) {
-        a.temperature = T(0.0) * dh + L.t_base;
-        a.pressure = L.p_base * exp(-gmr * dh / L.t_base);
+    if constexpr (std::is_same_v<T, double>) {
+        // The same formulas with a shorter chain of dependent operations: theta^k is
+        // exp(k ln theta), within about (1 + |k ln theta|) ulp of std::pow (|k ln theta| < 3
+        // over every layer of the model), and ln(sigma) follows from the same logarithm,
+        // rho / rho_ref = (rho_base / rho_ref) theta^(k - 1), for the engine lapse.
+        const double log_sigma_base = detail::us1976_log_sigma_base()[i];
+        if (L.lapse == 0.0) {
+            const double x = -gmr * dh / L.t_base;  // ln(p / p_base) = ln(sigma / sigma_base)
+            a.temperature = L.t_base;
+            a.pressure = L.p_base * std::exp(x);
+            a.log_density_ratio = log_sigma_base + x;
+        } else {
+            const double k = -gmr / L.lapse;
+            a.temperature = L.t_base + L.lapse * dh;
+            const double log_theta = std::log(a.temperature / L.t_base);
+            a.pressure = L.p_base * std::exp(k * log_theta);
+            a.log_density_ratio = log_sigma_base + (k - 1.0) * log_theta;
+        }
+        a.density = a.pressure / (us1976_constants::gas_constant * a.temperature);
     } else {
-        a.temperature = L.t_base + L.lapse * dh;
-        a.pressure = L.p_base * pow(T(a.temperature / L.t_base), -gmr / L.lapse);
+        using std::log;
+        if (L.lapse == 0.0) {
+            a.temperature = T(0.0) * dh + L.t_base;
+            a.pressure = L.p_base * exp(-gmr * dh / L.t_base);
+        } else {
+            a.temperature = L.t_base + L.lapse * dh;
+            a.pressure = L.p_base * pow(T(a.temperature / L.t_base), -gmr / L.lapse);
+        }
+        a.density = a.pressure / (us1976_constants::gas_constant * a.temperature);
+        a.log_density_ratio = log(T(a.density / us1976_constants::reference_density));
     }
-    a.density = a.pressure / (us1976_constants::gas_constant * a.temperature);
     a.speed_of_sound =
         sqrt(T(us1976_constants::gamma * us1976_constants::gas_constant * a.temperature));
     a.dynamic_viscosity = us1976_constants::sutherland_beta * a.temperature * sqrt(a.temperature) /

@@ -13,8 +13,10 @@
 #include <Eigen/Core>
 #include <Eigen/LU>  // Matrix3d::inverse()
 #include <cmath>
+#include <type_traits>
 
 #include "manta/aero/database.hpp"
+#include "manta/core/fastmath.hpp"
 #include "manta/core/scalar.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
 #include "manta/flightdyn/model.hpp"
@@ -61,8 +63,9 @@ struct Loads {
     T thrust{0.0};            ///< [N]
 };
 
-/// Set derived flags of a model (whether the aero tables use alpha-dot/beta-dot terms) and check
-/// it is complete; InputError naming what is missing. Call once after building a model.
+/// Set derived data of a model (whether the aero tables use alpha-dot/beta-dot terms, the inverse
+/// inertia tensor) and check it is complete; InputError naming what is missing. Call once after
+/// building a model.
 void finalize(FlightModel& model);
 /// Check a model is usable (mass, inertia, reference values); InputError otherwise.
 void validate(const FlightModel& model);
@@ -71,6 +74,29 @@ namespace detail {
 template <class T>
 T zero_like(const T& x) {
     return x * 0.0;
+}
+
+/// s = sin(x), c = cos(x): core::sin_cos for double (about one ulp, a fraction of the library
+/// calls' cost), std::sin and std::cos for other scalars (automatic differentiation).
+template <class T>
+void sin_cos(const T& x, T& s, T& c) {
+    if constexpr (std::is_same_v<T, double>) {
+        core::sin_cos(x, s, c);
+    } else {
+        using std::cos;
+        using std::sin;
+        s = sin(x);
+        c = cos(x);
+    }
+}
+
+/// Inverse inertia tensor of the model: the one cached by finalize() while the inertia is still
+/// the tensor it was computed from (compared on every call), else computed here.
+[[nodiscard]] inline Eigen::Matrix3d inverse_inertia(const FlightModel& m) {
+    if (m.inertia_inverse_of == m.mass.inertia) [[likely]] {
+        return m.inertia_inverse;
+    }
+    return m.mass.inertia.inverse();
 }
 }  // namespace detail
 
@@ -91,9 +117,10 @@ template <class T>
     L.mach = L.airspeed / L.atmosphere.speed_of_sound;
     L.dynamic_pressure = 0.5 * L.atmosphere.density * (airspeed * airspeed);
     // Thrust along the thrust line; a moment only if the engine position is off the CG.
-    const T sigma = L.atmosphere.density / 1.225;
-    L.thrust = m.engine.thrust_at(h, L.mach, u.throttle, sigma);
-    const double ce = std::cos(m.engine.thrust_angle), se = std::sin(m.engine.thrust_angle);
+    const T sigma = L.atmosphere.density / us1976_constants::reference_density;
+    L.thrust = m.engine.thrust_at(h, L.mach, u.throttle, sigma, L.atmosphere.log_density_ratio);
+    double se = 0.0, ce = 1.0;
+    core::sin_cos(m.engine.thrust_angle, se, ce);
     L.force_body << L.thrust * ce, zero, -L.thrust * se;
     L.moment_body.setConstant(zero);
     if (m.engine.has_position) {
@@ -108,14 +135,13 @@ template <class T>
     return L;
 }
 
-/// Add the aerodynamic coefficients, force and moment (about the CG) at body rates `omega_body`,
-/// controls `u` and angle rates alpha_dot, beta_dot [rad/s] to loads whose air data are set.
-/// Nothing is added without an aero database or below 1e-9 m/s, where alpha and beta are undefined.
+/// The aero table query of loads whose air data are set, at body rates `omega_body`, controls
+/// `u` and angle rates alpha_dot, beta_dot [rad/s] (airspeed > 0).
 template <class T>
-void add_aero_loads(const FlightModel& m, Loads<T>& L, const Vec3<T>& omega_body,
-                    const Controls<T>& u, const T& alpha_dot, const T& beta_dot) {
-    if (!m.aero || !(core::value_of(L.airspeed) > 1e-9)) return;
-    const double S = m.reference.area, b = m.reference.span, c = m.reference.chord;
+[[nodiscard]] aero::AeroQuery<T> aero_query(const FlightModel& m, const Loads<T>& L,
+                                            const Vec3<T>& omega_body, const Controls<T>& u,
+                                            const T& alpha_dot, const T& beta_dot) {
+    const double b = m.reference.span, c = m.reference.chord;
     aero::AeroQuery<T> q;
     q.alpha = L.alpha;
     q.beta = L.beta;
@@ -129,14 +155,37 @@ void add_aero_loads(const FlightModel& m, Loads<T>& L, const Vec3<T>& omega_body
     q.elevator = u.elevator;
     q.aileron = u.aileron;
     q.rudder = u.rudder;
-    L.coefficients = m.aero->evaluate(q, m.interpolation);
-    const T qS = L.dynamic_pressure * S;
-    const Vec3<T> F(qS * L.coefficients.CX, qS * L.coefficients.CY, qS * L.coefficients.CZ);
-    // Moment about the reference point, then transferred to the CG: M_cg = M_ref + r x F.
+    return q;
+}
+
+/// Aerodynamic force F (body axes) and moment M about the CG of coefficients C at qS = dynamic
+/// pressure x reference area: F = qS (CX, CY, CZ), M = qS (b Cl, c Cm, b Cn) + r x F with r from
+/// the CG to the moment reference point.
+template <class T>
+void aero_force_moment(const FlightModel& m, const T& qS, const aero::BodyCoefficients<T>& C,
+                       Vec3<T>& F, Vec3<T>& M) {
+    const double b = m.reference.span, c = m.reference.chord;
+    F = Vec3<T>(qS * C.CX, qS * C.CY, qS * C.CZ);
     const Eigen::Vector3d r = body_from_geom(m.moment_reference_geom - m.mass.cg_geom);
-    L.moment_body.x() += qS * b * L.coefficients.Cl + (r.y() * F.z() - r.z() * F.y());
-    L.moment_body.y() += qS * c * L.coefficients.Cm + (r.z() * F.x() - r.x() * F.z());
-    L.moment_body.z() += qS * b * L.coefficients.Cn + (r.x() * F.y() - r.y() * F.x());
+    M = Vec3<T>(qS * b * C.Cl + (r.y() * F.z() - r.z() * F.y()),
+                qS * c * C.Cm + (r.z() * F.x() - r.x() * F.z()),
+                qS * b * C.Cn + (r.x() * F.y() - r.y() * F.x()));
+}
+
+/// Add the aerodynamic coefficients, force and moment (about the CG) at body rates `omega_body`,
+/// controls `u` and angle rates alpha_dot, beta_dot [rad/s] to loads whose air data are set.
+/// Nothing is added without an aero database or below 1e-9 m/s, where alpha and beta are undefined.
+template <class T>
+void add_aero_loads(const FlightModel& m, Loads<T>& L, const Vec3<T>& omega_body,
+                    const Controls<T>& u, const T& alpha_dot, const T& beta_dot) {
+    if (!m.aero || !(core::value_of(L.airspeed) > 1e-9)) return;
+    const aero::AeroQuery<T> q = aero_query(m, L, omega_body, u, alpha_dot, beta_dot);
+    L.coefficients = m.aero->evaluate(q, m.interpolation);
+    const T qS = L.dynamic_pressure * m.reference.area;
+    // Moment about the reference point, then transferred to the CG: M_cg = M_ref + r x F.
+    Vec3<T> F, M;
+    aero_force_moment(m, qS, L.coefficients, F, M);
+    L.moment_body += M;
     L.force_body += F;
 }
 
@@ -204,7 +253,7 @@ void rigid_body_accelerations(const FlightModel& m, const Loads<T>& L, const Vec
     const Vec3<T> rhs(L.moment_body.x() - (w.y() * H.z() - w.z() * H.y()),
                       L.moment_body.y() - (w.z() * H.x() - w.x() * H.z()),
                       L.moment_body.z() - (w.x() * H.y() - w.y() * H.x()));
-    const Eigen::Matrix3d Ii = I.inverse();
+    const Eigen::Matrix3d Ii = detail::inverse_inertia(m);
     w_dot.x() = Ii(0, 0) * rhs.x() + Ii(0, 1) * rhs.y() + Ii(0, 2) * rhs.z();
     w_dot.y() = Ii(1, 0) * rhs.x() + Ii(1, 1) * rhs.y() + Ii(1, 2) * rhs.z();
     w_dot.z() = Ii(2, 0) * rhs.x() + Ii(2, 1) * rhs.y() + Ii(2, 2) * rhs.z();
@@ -226,18 +275,16 @@ void angle_rates(const Vec3<T>& v, const Vec3<T>& vd, T& alpha_dot, T& beta_dot)
     beta_dot = (vd.y() * V - v.y() * Vd) / (V * sqrt(uw2));
 }
 
-/// Loads at a state with the alpha-dot and beta-dot terms of the tables made consistent with the
-/// motion they cause. The loads are affine in (alpha_dot, beta_dot) (the dynamic table adds
-/// C_alphadot alpha_dot_hat + C_betadot beta_dot_hat), and so are the angle rates the resulting
-/// accelerations imply: three load evaluations, at (0, 0), (1, 0) and (0, 1) rad/s, give the 2x2
+/// consistent_loads for any scalar: three load evaluations, at (alpha_dot, beta_dot) = (0, 0),
+/// (1, 0) and (0, 1) rad/s (one extra table pass per angle rate the tables use), give the 2x2
 /// linear system (I - K) [alpha_dot, beta_dot] = f0, and the loads at its solution are the same
-/// affine combination of the three. Skipped when the tables have no such terms, or when alpha and
-/// beta are undefined (V = 0 or u = w = 0).
+/// affine combination of the three. The AD scalars take this path; `double` takes
+/// consistent_loads_affine, which gets the same system from one table pass.
 template <class T>
-[[nodiscard]] Loads<T> consistent_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body,
-                                        const T& airspeed, const T& alpha, const T& beta,
-                                        const Vec3<T>& w, const Controls<T>& u,
-                                        const Vec3<T>& gravity_body) {
+[[nodiscard]] Loads<T> consistent_loads_passes(const FlightModel& m, const T& h,
+                                               const Vec3<T>& v_body, const T& airspeed,
+                                               const T& alpha, const T& beta, const Vec3<T>& w,
+                                               const Controls<T>& u, const Vec3<T>& gravity_body) {
     const T zero = zero_like(h);
     // Atmosphere and thrust do not depend on the angle rates: once.
     const Loads<T> base = propulsive_loads(m, h, airspeed, alpha, beta, u);
@@ -291,6 +338,35 @@ template <class T>
     return L;
 }
 
+/// consistent_loads for double (eom.cpp): one table pass gives the coefficients at zero angle
+/// rates and their derivatives with respect to alpha_dot_hat and beta_dot_hat
+/// (AeroDatabase::evaluate_with_angle_rates), hence the loads and K of consistent_loads_passes
+/// without evaluating the tables again. Equal to that path to rounding.
+[[nodiscard]] Loads<double> consistent_loads_affine(const FlightModel& m, double h,
+                                                    const Vec3<double>& v_body, double airspeed,
+                                                    double alpha, double beta,
+                                                    const Vec3<double>& w,
+                                                    const Controls<double>& u,
+                                                    const Vec3<double>& gravity_body);
+
+/// Loads at a state with the alpha-dot and beta-dot terms of the tables made consistent with the
+/// motion they cause. The loads are affine in (alpha_dot, beta_dot) (the dynamic table adds
+/// C_alphadot alpha_dot_hat + C_betadot beta_dot_hat), and so are the angle rates the resulting
+/// accelerations imply, so the consistent rates solve a 2x2 linear system (I - K) x = f0 and the
+/// loads follow from them exactly. Skipped when the tables have no such terms, or when alpha and
+/// beta are undefined (V = 0 or u = w = 0).
+template <class T>
+[[nodiscard]] Loads<T> consistent_loads(const FlightModel& m, const T& h, const Vec3<T>& v_body,
+                                        const T& airspeed, const T& alpha, const T& beta,
+                                        const Vec3<T>& w, const Controls<T>& u,
+                                        const Vec3<T>& gravity_body) {
+    if constexpr (std::is_same_v<T, double>) {
+        return consistent_loads_affine(m, h, v_body, airspeed, alpha, beta, w, u, gravity_body);
+    } else {
+        return consistent_loads_passes(m, h, v_body, airspeed, alpha, beta, w, u, gravity_body);
+    }
+}
+
 }  // namespace detail
 
 /// Time derivative of the Euler-angle state. If the aero tables carry alpha-dot or beta-dot
@@ -301,14 +377,13 @@ template <class T>
                                       const Controls<T>& u, Loads<T>* loads_out = nullptr) {
     using std::asin;
     using std::atan2;
-    using std::cos;
-    using std::sin;
     using std::sqrt;
-    const T sphi = sin(s[euler::phi]), cphi = cos(s[euler::phi]);
-    const T sth = sin(s[euler::theta]), cth = cos(s[euler::theta]);
-    const T spsi = sin(s[euler::psi]), cpsi = cos(s[euler::psi]);
-    const T sa = sin(s[euler::alpha]), ca = cos(s[euler::alpha]);
-    const T sb = sin(s[euler::beta]), cb = cos(s[euler::beta]);
+    T sphi, cphi, sth, cth, spsi, cpsi, sa, ca, sb, cb;
+    detail::sin_cos(s[euler::phi], sphi, cphi);
+    detail::sin_cos(s[euler::theta], sth, cth);
+    detail::sin_cos(s[euler::psi], spsi, cpsi);
+    detail::sin_cos(s[euler::alpha], sa, ca);
+    detail::sin_cos(s[euler::beta], sb, cb);
     const T V = s[euler::V];
     const Vec3<T> v_body(V * ca * cb, V * sb, V * sa * cb);
     const Vec3<T> w(s[euler::p], s[euler::q], s[euler::r]);
@@ -331,14 +406,22 @@ template <class T>
 
     EulerState<T> d;
     const T &uu = v_body.x(), &vv = v_body.y(), &ww = v_body.z();
-    d[euler::V] = (uu * v_dot.x() + vv * v_dot.y() + ww * v_dot.z()) / V;
-    d[euler::alpha] = (uu * v_dot.z() - ww * v_dot.x()) / (uu * uu + ww * ww);
-    d[euler::beta] = (V * v_dot.y() - vv * d[euler::V]) / (V * V * cb);
+    // Air-data rates V_dot = v . v_dot / V, alpha_dot = (u w_dot - w u_dot) / (u^2 + w^2),
+    // beta_dot = (V v_dot - v V_dot) / (V^2 cos(beta)) = (V^2 v_dot - v (v . v_dot)) / (V^3 cb):
+    // the reciprocals depend on the state alone, so no division waits for the loads.
+    const T inv_V = 1.0 / V;
+    const T inv_uw2 = 1.0 / (uu * uu + ww * ww);
+    const T inv_V3cb = 1.0 / (V * V * V * cb);
+    const T v_vdot = uu * v_dot.x() + vv * v_dot.y() + ww * v_dot.z();
+    d[euler::V] = v_vdot * inv_V;
+    d[euler::alpha] = (uu * v_dot.z() - ww * v_dot.x()) * inv_uw2;
+    d[euler::beta] = (V * V * v_dot.y() - vv * v_vdot) * inv_V3cb;
     // Attitude kinematics (3-2-1 Euler angles).
+    const T inv_cth = 1.0 / cth;
     const T qs_rc = w.y() * sphi + w.z() * cphi;
-    d[euler::phi] = w.x() + sth * qs_rc / cth;
+    d[euler::phi] = w.x() + sth * qs_rc * inv_cth;
     d[euler::theta] = w.y() * cphi - w.z() * sphi;
-    d[euler::psi] = qs_rc / cth;
+    d[euler::psi] = qs_rc * inv_cth;
     // Navigation: earth-axis velocity = C_earth_from_body * v_body.
     d[euler::x] = cth * cpsi * uu + (sphi * sth * cpsi - cphi * spsi) * vv +
                   (cphi * sth * cpsi + sphi * spsi) * ww;

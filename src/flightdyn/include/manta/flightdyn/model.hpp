@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -67,6 +68,13 @@ struct FlightModel {
     bool angle_rate_terms = false;
     bool alpha_dot_terms = false;  ///< tables have alpha-dot columns (set by finalize)
     bool beta_dot_terms = false;   ///< tables have beta-dot columns (set by finalize)
+    /// Inverse of mass.inertia (set by finalize) and the inertia tensor it is the inverse of. The
+    /// equations of motion use it only while `inertia_inverse_of` equals mass.inertia (compared
+    /// on every use), so an inertia changed after finalize is never paired with a stale inverse;
+    /// NaN until finalize, so an unfinalized model inverts on every use.
+    Eigen::Matrix3d inertia_inverse = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d inertia_inverse_of =
+        Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// Vector from geometry axes (x aft, y right, z up) to body axes (x fwd, y right, z down).

@@ -72,11 +72,19 @@ struct Loc {
     double t;
 };
 
+/// The angle rates alphadot and betadot: rates first_angle_rate and first_angle_rate + 1.
+inline constexpr int first_angle_rate = 3;
+inline constexpr int n_angle_rates = 2;
+
 struct TablePlan;
 /// Multilinear kernel of one table shape: adds the table's columns, each times its factor
-/// (factors: p q r alphadot betadot, then 1), into the six slots `out`.
+/// (factors: p q r alphadot betadot, then 1), into the six slots `out`. If `angle_rate_out` is
+/// not null, the alphadot and betadot columns are also added, without their factor, into
+/// angle_rate_out[(rate - first_angle_rate) * n_slots + slot]: the partial derivatives of the
+/// slots with respect to the two angle rates (the sum is affine in them). Tables without such
+/// columns leave `angle_rate_out` alone.
 using MultilinearKernel = void (*)(const TablePlan& tp, const Loc* loc, const double* factors,
-                                   double* out);
+                                   double* out, double* angle_rate_out);
 
 /// Index of the unit factor that static and control columns multiply (after the five rates).
 inline constexpr int unit_factor = n_rates;
@@ -114,10 +122,6 @@ struct RangeCounter {
     std::atomic<double> lowest{0.0};
     std::atomic<double> highest{0.0};
 };
-
-/// sin(x) and cos(x) within one ulp of the correctly rounded values: fdlibm's polynomial kernels
-/// for |x| <= pi/4 (a few nanoseconds for both), std::sin and std::cos beyond.
-void sin_cos(double x, double& s, double& c) noexcept;
 
 /// Index in [0, EvaluationCounter::n_owned) owned by the calling thread while it lives, or
 /// n_owned when every index is taken (database_eval.cpp).
