@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -121,6 +122,23 @@ aero::SourceResult VlmSource::evaluate(const aero::AeroQuery<double>& q,
     out.wind = {r.CL, r.CD, r.CY};
     out.CD_induced = r.CD_induced;
     out.CD_profile = r.CD_profile;
+    return out;
+}
+
+aero::CoefficientHistory VlmSource::replay(const aero::Motion& motion,
+                                           const aero::ProgressCallback& progress) const {
+    UnsteadyOptions o = unsteady_options_;
+    if (!o.mach && motion.metadata.mach) o.mach = motion.metadata.mach;
+    UnsteadySolver solver(model_, lattice_, o);
+    const UnsteadyHistory h = solver.run(motion, [&](const UnsteadySolver& s) {
+        if (progress) progress(static_cast<double>(s.current().index) / std::max(1, s.n_steps()));
+    });
+    aero::CoefficientHistory out;
+    for (const UnsteadyStep& st : h.steps) {
+        out.t.push_back(st.t);
+        out.body.push_back(st.body);
+        out.wind.push_back({st.CL, st.CD, st.CY});
+    }
     return out;
 }
 

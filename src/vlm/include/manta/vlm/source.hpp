@@ -16,6 +16,7 @@
 #include "manta/vlm/lattice.hpp"
 #include "manta/vlm/model.hpp"
 #include "manta/vlm/steady.hpp"
+#include "manta/vlm/unsteady.hpp"
 #include "manta/vlm/viscous.hpp"
 
 namespace manta::vlm {
@@ -30,6 +31,13 @@ public:
     [[nodiscard]] std::string fingerprint() const override;
     [[nodiscard]] aero::SourceResult evaluate(const aero::AeroQuery<double>& q,
                                               const aero::FlowConditions& c) const override;
+    [[nodiscard]] bool unsteady() const override { return true; }
+    /// The unsteady vortex lattice along `motion` (UnsteadyOptions of the source; the motion's
+    /// v0 and Mach metadata unless the options set them). The profile drag is the model's only.
+    [[nodiscard]] aero::CoefficientHistory replay(
+        const aero::Motion& motion, const aero::ProgressCallback& progress) const override;
+    /// Options of `replay`.
+    void set_unsteady_options(const UnsteadyOptions& o) { unsteady_options_ = o; }
 
     [[nodiscard]] const Model& model() const { return model_; }
     [[nodiscard]] const Lattice& lattice() const { return lattice_; }
@@ -46,6 +54,7 @@ private:
     Lattice lattice_;
     std::optional<geometry::AircraftGeometry> geometry_;
     ViscousDragOptions viscous_options_;
+    UnsteadyOptions unsteady_options_;
     std::string fingerprint_;
     mutable std::mutex mutex_;
     mutable std::map<double, std::shared_ptr<const SteadySolver>> solvers_;
