@@ -432,7 +432,29 @@ SteadyResult SteadySolver::solve(const FlowState& state) const {
 Derivatives SteadySolver::derivatives(const FlowState& state) const {
     FlowState s = state;
     s.deflection = full_deflection(lattice_, state.deflection);
-    const Units u = units(s.deflection);
+    // One factorised solve and one induced-velocity pass for everything: the six unit solutions
+    // at the deflection, and per control the change of the circulation at this state per unit
+    // deflection (the right-hand side is linear in the deflections: first-order normals).
+    const auto nc = static_cast<Eigen::Index>(lattice_.control_names.size());
+    const int n = lattice_.size();
+    const Vector3d V = freestream_geometry(s.alpha, s.beta);
+    const Vector3d w = omega_geometry(model_.reference, s.p_hat, s.q_hat, s.r_hat);
+    MatrixXd B(n, 6 + nc);
+    for (int k = 0; k < 3; ++k) {
+        B.col(k) = rhs(s.deflection, Vector3d::Unit(k), Vector3d::Zero());
+        B.col(k + 3) = rhs(s.deflection, Vector3d::Zero(), Vector3d::Unit(k));
+    }
+    const VectorXd b0 = rhs(s.deflection, V, w);
+    for (Eigen::Index k = 0; k < nc; ++k) {
+        VectorXd d1 = s.deflection;
+        d1[k] += 1.0;
+        B.col(6 + k) = rhs(d1, V, w) - b0;
+    }
+    const MatrixXd G_all = lu_.solve(B);
+    const MatrixXd U_all = induced_at_bound(G_all);
+    Units u;
+    u.G = G_all.leftCols(6);
+    u.U = U_all.leftCols(6);
     Derivatives d;
     d.state = loads(u, s, true);
     auto vec = [](const SteadyResult& r) {
@@ -488,28 +510,20 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
                                  (2 * h);
         }
     }
-    // Controls: the circulation at deflection +-h of each control, one back substitution each,
-    // and one pass for all the induced velocities.
-    const auto nc = static_cast<Eigen::Index>(lattice_.control_names.size());
+    // Controls: the loads at deflection +-h from the circulation and induced velocity changes
+    // found above (the loads are quadratic in them, so the central difference is exact).
     d.control.setZero(6, nc);
     d.control_stability.setZero(6, nc);
     if (nc > 0) {
-        const Vector3d V = freestream_geometry(s.alpha, s.beta);
-        const Vector3d w = omega_geometry(model_.reference, s.p_hat, s.q_hat, s.r_hat);
-        const int n = lattice_.size();
-        MatrixXd B(n, 2 * nc);
+        Eigen::Matrix<double, 6, 1> x;
+        x << V, w;
+        const VectorXd g0 = u.G * x;
+        const VectorXd v0 = u.U * x;
         for (Eigen::Index k = 0; k < nc; ++k) {
-            VectorXd dp = s.deflection, dm = s.deflection;
-            dp[k] += h;
-            dm[k] -= h;
-            B.col(2 * k) = rhs(dp, V, w);
-            B.col(2 * k + 1) = rhs(dm, V, w);
-        }
-        const MatrixXd G = lu_.solve(B);
-        const MatrixXd U = induced_at_bound(G);
-        for (Eigen::Index k = 0; k < nc; ++k) {
-            const SteadyResult rp = loads_from(G.col(2 * k), U.col(2 * k), s, false);
-            const SteadyResult rm = loads_from(G.col(2 * k + 1), U.col(2 * k + 1), s, false);
+            const SteadyResult rp =
+                loads_from(g0 + h * G_all.col(6 + k), v0 + h * U_all.col(6 + k), s, false);
+            const SteadyResult rm =
+                loads_from(g0 - h * G_all.col(6 + k), v0 - h * U_all.col(6 + k), s, false);
             d.control.col(k) = (vec(rp) - vec(rm)) / (2 * h);
             d.control_stability.col(k) =
                 (stab(rp, s.alpha, s.beta) - stab(rm, s.alpha, s.beta)) / (2 * h);
