@@ -84,6 +84,69 @@ struct Stretched {
         return v;
     }
 
+    /// Structure-of-arrays copy of the horseshoes for `row` (built by `prepare_rows`).
+    Eigen::ArrayXd ax, ay, az, bx, by, bz, r0x, r0y, r0z, l2, cin, cx;
+    Eigen::ArrayXi comps;
+
+    void prepare_rows() {
+        const auto n = static_cast<Eigen::Index>(a.size());
+        for (auto* v : {&ax, &ay, &az, &bx, &by, &bz, &r0x, &r0y, &r0z, &l2, &cin, &cx})
+            v->resize(n);
+        comps.resize(n);
+        for (Eigen::Index j = 0; j < n; ++j) {
+            const auto k = static_cast<std::size_t>(j);
+            ax[j] = a[k].x();
+            ay[j] = a[k].y();
+            az[j] = a[k].z();
+            bx[j] = b[k].x();
+            by[j] = b[k].y();
+            bz[j] = b[k].z();
+            r0x[j] = bx[j] - ax[j];
+            r0y[j] = by[j] - ay[j];
+            r0z[j] = bz[j] - az[j];
+            l2[j] = r0x[j] * r0x[j] + r0y[j] * r0y[j] + r0z[j] * r0z[j];
+            cin[j] = core_in[k];
+            cx[j] = core_x[k];
+            comps[j] = component[k];
+        }
+    }
+
+    /// Velocities at p of every horseshoe at once (the same arithmetic as `at`, as whole-array
+    /// expressions the compiler vectorises); only without images (fy = fz = 0).
+    void row(const Vector3d& p, int comp, Eigen::ArrayXd& vx, Eigen::ArrayXd& vy,
+             Eigen::ArrayXd& vz) const {
+        using A = Eigen::ArrayXd;
+        const A rc2 = (comps == comp).select(cin, cx);
+        // Bound segment a -> b.
+        const A r1x = p.x() - ax, r1y = p.y() - ay, r1z = p.z() - az;
+        const A r2x = p.x() - bx, r2y = p.y() - by, r2z = p.z() - bz;
+        const A cxx = r1y * r2z - r1z * r2y, cyy = r1z * r2x - r1x * r2z,
+                czz = r1x * r2y - r1y * r2x;
+        const A c2 = cxx.square() + cyy.square() + czz.square();
+        const A s1 = r1x.square() + r1y.square() + r1z.square();
+        const A s2 = r2x.square() + r2y.square() + r2z.square();
+        const A i1 = (s1 + rc2).rsqrt(), i2 = (s2 + rc2).rsqrt();
+        const A dot =
+            r0x * (r1x * i1 - r2x * i2) + r0y * (r1y * i1 - r2y * i2) + r0z * (r1z * i1 - r2z * i2);
+        const A k =
+            (c2 <= 1e-24 * l2.square()).select(0.0, detail::inv_four_pi * dot / (c2 + l2 * rc2));
+        vx = k * cxx;
+        vy = k * cyy;
+        vz = k * czz;
+        // Legs: b -> infinity and infinity -> a along +x; x-hat x r = (0, -r_z, r_y).
+        auto leg = [&](const A& rx, const A& ry, const A& rz, const A& sq, double sign) {
+            const A cc = ry.square() + rz.square();
+            const A nn = sq.sqrt();
+            const A f = (nn == 0.0 || cc <= 1e-24 * sq)
+                            .select(0.0, sign * detail::inv_four_pi * (1.0 + rx / nn) / (cc + rc2));
+            vy -= f * rz;
+            vz += f * ry;
+        };
+        leg(r2x, r2y, r2z, s2, 1.0);
+        leg(r1x, r1y, r1z, s1, -1.0);
+        vx /= beta;
+    }
+
 private:
     /// Horseshoe from infinity (+x) to e1, e1 to e2, e2 to infinity.
     static Vector3d horseshoe(const Vector3d& p, const Vector3d& e1, const Vector3d& e2,
@@ -164,7 +227,11 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
     check_lattice(model_, lattice_);
     beta_pg_ = std::sqrt(1.0 - mach * mach);
     const int n = lattice_.size();
-    const Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
+    Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
+    // Without symmetry images every influence row is one vectorised pass over the horseshoes.
+    const bool vectorised = model_.y_symmetry == 0 && model_.z_symmetry == 0;
+    if (vectorised) st.prepare_rows();
+    Eigen::ArrayXd vx, vy, vz;
     // Rows: flow tangency at every control point, except the last control point of each strip
     // of a surface that sheds no wake (NOWAKE), whose row states instead that the strip's
     // circulations sum to zero: such a surface (e.g. a fuselage side plate) carries lift through
@@ -173,21 +240,28 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
     for (const Strip& S : lattice_.strips)
         if (!S.sheds_wake)
             closure_row_[static_cast<std::size_t>(S.first_panel + S.n_panels - 1)] = 1;
-    MatrixXd A(n, n);
+    // Assembled transposed (row i of the influence matrix is column i here: contiguous writes).
+    MatrixXd At(n, n);
     for (int i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
         if (closure_row_[ii]) {
             const Strip& S = lattice_.strips[static_cast<std::size_t>(lattice_.strip[ii])];
-            A.row(i).setZero();
-            A.row(i).segment(S.first_panel, S.n_panels).setOnes();
+            At.col(i).setZero();
+            At.col(i).segment(S.first_panel, S.n_panels).setOnes();
             continue;
         }
         const Vector3d p = stretch(lattice_.control_point[ii], beta_pg_);
         const Vector3d& nrm = lattice_.normal[ii];
         const int comp = component_of(model_, lattice_, ii);
-        for (int j = 0; j < n; ++j) A(i, j) = st.at(p, comp, static_cast<std::size_t>(j)).dot(nrm);
+        if (vectorised) {
+            st.row(p, comp, vx, vy, vz);
+            At.col(i) = (vx * nrm.x() + vy * nrm.y() + vz * nrm.z()).matrix();
+        } else {
+            for (int j = 0; j < n; ++j)
+                At(j, i) = st.at(p, comp, static_cast<std::size_t>(j)).dot(nrm);
+        }
     }
-    lu_.compute(A);
+    lu_.compute(At.transpose());
     mid_ = lattice_.bound_point;
     // Trefftz plane: the wake of strip t is a pair of infinite 2-D vortices at its edges (the
     // trailing legs far downstream); wash at the centre of strip s per unit circulation of t.
@@ -253,8 +327,25 @@ VectorXd SteadySolver::rhs(const VectorXd& deflection, const Vector3d& v, const 
 MatrixXd SteadySolver::induced_at_bound(const MatrixXd& gamma) const {
     const int n = lattice_.size();
     const auto K = gamma.cols();
-    const Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
+    Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
     MatrixXd U = MatrixXd::Zero(3 * n, K);
+    const bool vectorised = model_.y_symmetry == 0 && model_.z_symmetry == 0;
+    if (vectorised) {
+        // Per target point: the velocities of all horseshoes in one pass, then one small
+        // matrix product with the circulations.
+        st.prepare_rows();
+        Eigen::ArrayXd vx, vy, vz;
+        Eigen::Matrix<double, 3, Eigen::Dynamic> rows(3, n);
+        for (int i = 0; i < n; ++i) {
+            const Vector3d p = stretch(mid_[static_cast<std::size_t>(i)], beta_pg_);
+            st.row(p, component_of(model_, lattice_, static_cast<std::size_t>(i)), vx, vy, vz);
+            rows.row(0) = vx.matrix().transpose();
+            rows.row(1) = vy.matrix().transpose();
+            rows.row(2) = vz.matrix().transpose();
+            U.middleRows(3 * i, 3).noalias() = rows * gamma;
+        }
+        return U;
+    }
     const MatrixXd gt = gamma.transpose();  // K x N: column j holds horseshoe j's strengths
     for (int i = 0; i < n; ++i) {
         const Vector3d p = stretch(mid_[static_cast<std::size_t>(i)], beta_pg_);
