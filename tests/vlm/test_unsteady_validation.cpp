@@ -11,11 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -512,38 +510,6 @@ TEST(VlmUnsteady, FreeWakeAndVtuOutput) {
     EXPECT_NE(text.find("UnstructuredGrid"), std::string::npos);
     EXPECT_NE(text.find(cells), std::string::npos) << cells;
     std::filesystem::remove_all(dir);
-}
-
-// Not a test: the time of one step with a 2000-panel lattice and a 200-row wake (docs/uvlm.md).
-// Run with --gtest_also_run_disabled_tests --gtest_filter=*StepTiming*.
-TEST(VlmUnsteady, DISABLED_StepTiming) {
-    const Model m = rectangle(10.0, 10, 100);
-    for (const int threads : {1, 2}) {
-        UnsteadyOptions o;
-        o.wake_rows = 200;
-        o.threads = threads;
-        UnsteadySolver u(m, build_lattice(m), o);
-        u.start(constant_pitch(2.0 * deg, 100.0));  // steady start: the full wake at once
-        std::vector<double> wall, cpu;
-        for (int i = 0; i < 15; ++i) {
-            timespec c0{}, c1{};
-            clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
-            const auto t0 = std::chrono::steady_clock::now();
-            u.step();
-            const auto t1 = std::chrono::steady_clock::now();
-            clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
-            wall.push_back(std::chrono::duration<double>(t1 - t0).count());
-            cpu.push_back(static_cast<double>(c1.tv_sec - c0.tv_sec) +
-                          1e-9 * static_cast<double>(c1.tv_nsec - c0.tv_nsec));
-        }
-        std::sort(wall.begin(), wall.end());
-        std::sort(cpu.begin(), cpu.end());
-        std::printf(
-            "%d panels, %d wake rows x %d columns, %d thread(s): median step %.3f s wall, "
-            "%.3f s cpu\n",
-            u.lattice().size(), u.current().wake_rows, u.wake().cols, threads,
-            wall[wall.size() / 2], cpu[cpu.size() / 2]);
-    }
 }
 
 }  // namespace
