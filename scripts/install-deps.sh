@@ -14,6 +14,9 @@ packages=(
     libgtest-dev libgmock-dev
     libbenchmark-dev
     nlohmann-json3-dev   # JSON output (--json) and JSON files; see docs/adr/0002-json-library.md
+    libnlopt-cxx-dev     # Kriging likelihood optimisation (surrogate)
+    libsqlite3-dev       # sample store of table campaigns (tables)
+    coinor-libipopt-dev  # interior-point NLP solver of the optimal-control transcription (optimal)
 )
 
 missing=()
