@@ -1,0 +1,165 @@
+/// @file check.cpp
+/// Finite-difference check of the NLP derivatives, and hp refinement at control jumps.
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "detail/transcription.hpp"
+#include "manta/core/error.hpp"
+#include "manta/optimal/solve.hpp"
+
+namespace manta::optimal {
+
+DerivativeCheck check_derivatives(const Model& model, const Mesh& mesh, const Guess& guess,
+                                  double perturbation, unsigned seed) {
+    detail::Transcription tr(model, mesh);
+    const int n = tr.n_vars();
+    const int m = tr.n_rows();
+    std::vector<double> z(n), xl(n), xu(n), gl(m), gu(m);
+    tr.initial_point(guess, z.data());
+    tr.bounds(xl.data(), xu.data(), gl.data(), gu.data());
+    Eigen::VectorXd vs, rs;
+    double os = 1.0;
+    tr.scaling(z.data(), vs, rs, os);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    for (int c = 0; c < n; ++c) {
+        if (xl[c] == xu[c]) continue;
+        const double lo = xl[c] + 1e-3 * (xu[c] - xl[c]);
+        const double hi = xu[c] - 1e-3 * (xu[c] - xl[c]);
+        z[c] =
+            std::clamp(z[c] + perturbation * vs(c) * uni(rng), std::min(lo, hi), std::max(lo, hi));
+    }
+    DerivativeCheck res;
+    res.n_variables = n;
+    // analytic
+    std::vector<double> grad(n), jac(tr.nnz_jacobian());
+    std::vector<int> jr(tr.nnz_jacobian()), jc(tr.nnz_jacobian());
+    tr.gradient(z.data(), grad.data());
+    tr.jacobian(z.data(), jac.data());
+    tr.jacobian_structure(jr.data(), jc.data());
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, n);
+    for (std::size_t k = 0; k < jac.size(); ++k) J(jr[k], jc[k]) += jac[k];
+    std::vector<double> lambda(m);
+    for (auto& l : lambda) l = uni(rng) / std::max(1e-12, 1.0);
+    for (int r = 0; r < m; ++r) lambda[r] /= rs(r);
+    const double sigma = 1.0 / os;
+    std::vector<double> hv(tr.nnz_hessian());
+    std::vector<int> hr(tr.nnz_hessian()), hc(tr.nnz_hessian());
+    tr.hessian(z.data(), sigma, lambda.data(), hv.data());
+    tr.hessian_structure(hr.data(), hc.data());
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t k = 0; k < hv.size(); ++k) {
+        H(hr[k], hc[k]) += hv[k];
+        if (hr[k] != hc[k]) H(hc[k], hr[k]) += hv[k];
+    }
+    // Lagrangian gradient sigma grad f + J^T lambda at a point
+    auto lag_grad = [&](std::vector<double>& zz) {
+        std::vector<double> g(n), jj(tr.nnz_jacobian());
+        tr.gradient(zz.data(), g.data());
+        tr.jacobian(zz.data(), jj.data());
+        Eigen::VectorXd out = Eigen::Map<Eigen::VectorXd>(g.data(), n) * sigma;
+        for (std::size_t k = 0; k < jj.size(); ++k) out(jc[k]) += lambda[jr[k]] * jj[k];
+        return out;
+    };
+    std::vector<double> gp(m), gm(m);
+    for (int c = 0; c < n; ++c) {
+        const double h = 1e-6 * vs(c);
+        std::vector<double> zp = z, zm = z;
+        zp[c] += h;
+        zm[c] -= h;
+        const double fd_f = (tr.objective(zp.data()) - tr.objective(zm.data())) / (2.0 * h);
+        res.gradient_error = std::max(res.gradient_error, std::abs(grad[c] - fd_f) * vs(c) / os /
+                                                              (1.0 + std::abs(fd_f) * vs(c) / os));
+        tr.constraints(zp.data(), gp.data());
+        tr.constraints(zm.data(), gm.data());
+        for (int r = 0; r < m; ++r) {
+            const double fd = (gp[r] - gm[r]) / (2.0 * h) * vs(c) / rs(r);
+            const double an = J(r, c) * vs(c) / rs(r);
+            const double e = std::abs(an - fd) / (1.0 + std::abs(fd));
+            if (e > res.jacobian_error) {
+                res.jacobian_error = e;
+                res.worst_row = r;
+                res.worst_col = c;
+            }
+        }
+        const Eigen::VectorXd lp = lag_grad(zp);
+        const Eigen::VectorXd lm = lag_grad(zm);
+        for (int r = 0; r < n; ++r) {
+            const double fd = (lp(r) - lm(r)) / (2.0 * h) * vs(c) * vs(r);
+            const double an = H(r, c) * vs(c) * vs(r);
+            res.hessian_error =
+                std::max(res.hessian_error, std::abs(an - fd) / (1.0 + std::abs(fd)));
+        }
+    }
+    return res;
+}
+
+Mesh refine_at_control_jumps(const Solution& sol, int nodes_per_segment, double threshold) {
+    if (sol.segments.empty()) throw InputError("hp refinement: the solution has no segments");
+    const double t0 = sol.initial_time;
+    const double dt = sol.final_time - sol.initial_time;
+    if (!(dt > 0.0)) throw InputError("hp refinement: the solution has zero duration");
+    std::vector<double> fr;
+    for (std::size_t k = 1; k + 1 < sol.breaks.size(); ++k) fr.push_back((sol.breaks[k] - t0) / dt);
+    const int nu = sol.info.n_controls();
+    for (int j = 0; j < nu; ++j) {
+        double lo = sol.info.controls[j].lower;
+        double hi = sol.info.controls[j].upper;
+        if (!std::isfinite(lo) || !std::isfinite(hi)) {
+            lo = kInf;
+            hi = -kInf;
+            for (const auto& s : sol.segments) {
+                lo = std::min(lo, s.controls.col(j).minCoeff());
+                hi = std::max(hi, s.controls.col(j).maxCoeff());
+            }
+        }
+        const double range = hi - lo;
+        if (!(range > 0.0)) continue;
+        for (const auto& s : sol.segments) {
+            const Eigen::Index n = s.time.size();
+            Eigen::Index i = 0;
+            while (i + 1 < n) {
+                if (std::abs(s.controls(i + 1, j) - s.controls(i, j)) <= threshold * range) {
+                    ++i;
+                    continue;
+                }
+                // a run of large steps of one sign: one jump
+                Eigen::Index e = i + 1;
+                const double sign = s.controls(i + 1, j) - s.controls(i, j);
+                while (e + 1 < n && (s.controls(e + 1, j) - s.controls(e, j)) * sign > 0.0 &&
+                       std::abs(s.controls(e + 1, j) - s.controls(e, j)) > 0.05 * range) {
+                    ++e;
+                }
+                const double mid = 0.5 * (s.controls(i, j) + s.controls(e, j));
+                double tj = 0.5 * (s.time(i) + s.time(e));
+                for (Eigen::Index q = i; q < e; ++q) {
+                    const double a = s.controls(q, j) - mid;
+                    const double b = s.controls(q + 1, j) - mid;
+                    if (a * b <= 0.0 && a != b) {
+                        tj = s.time(q) + a / (a - b) * (s.time(q + 1) - s.time(q));
+                        break;
+                    }
+                }
+                fr.push_back((tj - t0) / dt);
+                i = e;
+            }
+        }
+    }
+    std::sort(fr.begin(), fr.end());
+    Mesh mesh;
+    mesh.breaks.push_back(0.0);
+    const double gap = 1e-3;
+    for (const double f : fr) {
+        if (f > mesh.breaks.back() + gap && f < 1.0 - gap) mesh.breaks.push_back(f);
+    }
+    mesh.breaks.push_back(1.0);
+    mesh.nodes.assign(mesh.breaks.size() - 1, nodes_per_segment);
+    mesh.free_breaks = mesh.nodes.size() > 1;
+    mesh.min_segment_fraction = std::min(1e-3, 0.5 / static_cast<double>(mesh.nodes.size()));
+    mesh.validate();
+    return mesh;
+}
+
+}  // namespace manta::optimal

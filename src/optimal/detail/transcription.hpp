@@ -1,0 +1,121 @@
+#pragma once
+/// @file transcription.hpp
+/// Private: the LGL transcription of a Model on a Mesh as an NLP in the form IPOPT takes
+/// (variables, bounds, constraints, sparse first and second derivatives, scaling).
+///
+/// Variables: X (state at each distinct mesh point; adjacent segments share their common
+/// point), U (control at each collocation point, per segment), p, t0, tf, free interior breaks.
+/// Rows: defects D_k X_k - (h_k/2) f (segment k, node i, state r), path constraints at each
+/// collocation point, events, and the ordering of free breaks.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "manta/optimal/lgl.hpp"
+#include "manta/optimal/model.hpp"
+#include "manta/optimal/solve.hpp"
+
+namespace manta::optimal::detail {
+
+/// IPOPT's "infinite" bound.
+inline constexpr double kNlpInf = 1e20;
+
+class Transcription {
+public:
+    Transcription(const Model& model, const Mesh& mesh);
+
+    // ---- sizes -------------------------------------------------------------------------------
+    [[nodiscard]] int n_vars() const { return n_vars_; }
+    [[nodiscard]] int n_rows() const { return n_rows_; }
+    [[nodiscard]] int nnz_jacobian() const { return static_cast<int>(jac_row_.size()); }
+    [[nodiscard]] int nnz_hessian() const { return static_cast<int>(hess_row_.size()); }
+    [[nodiscard]] int n_segments() const { return static_cast<int>(seg_.size()); }
+    [[nodiscard]] int n_points() const { return n_points_; }
+
+    // ---- problem data ------------------------------------------------------------------------
+    void bounds(double* x_l, double* x_u, double* g_l, double* g_u) const;
+    /// Initial point from a guess (clipped into the bounds).
+    void initial_point(const Guess& guess, double* z) const;
+    /// Variable scales (typical magnitudes), constraint scales and objective scale.
+    void scaling(const double* z0, Eigen::VectorXd& var_scale, Eigen::VectorXd& row_scale,
+                 double& obj_scale);
+    void jacobian_structure(int* rows, int* cols) const;
+    void hessian_structure(int* rows, int* cols) const;
+
+    // ---- evaluation --------------------------------------------------------------------------
+    [[nodiscard]] double objective(const double* z);
+    void gradient(const double* z, double* grad);
+    void constraints(const double* z, double* g);
+    void jacobian(const double* z, double* values);
+    void hessian(const double* z, double obj_factor, const double* lambda, double* values);
+
+    // ---- results -----------------------------------------------------------------------------
+    /// Fill states, controls, costates, times and the violation report of `sol` from z and the
+    /// constraint multipliers (lambda may be null: no costates).
+    void extract(const double* z, const double* lambda, int n_report, Solution& sol);
+
+private:
+    struct Segment {
+        int n = 0;             // LGL points
+        int state_offset = 0;  // first mesh point (index into X)
+        int point_offset = 0;  // first collocation point (index into U, node caches)
+        int defect_row = 0;    // first defect row
+        LglRule rule;
+        bool seed_lo = false;
+        bool seed_hi = false;
+    };
+
+    [[nodiscard]] int x_col(int mesh_point, int r) const { return mesh_point * nx_ + r; }
+    [[nodiscard]] int u_col(int point, int j) const { return u0_ + point * nu_ + j; }
+    [[nodiscard]] int p_col(int j) const { return p0_ + j; }
+    [[nodiscard]] int t0_col() const { return t0_; }
+    [[nodiscard]] int tf_col() const { return t0_ + 1; }
+    [[nodiscard]] int break_col(int k) const { return b0_ + k - 1; }  // k = 1..K-1
+    [[nodiscard]] double break_value(const double* z, int k) const;
+    [[nodiscard]] NodePlacement placement(int k, int i, const double* z) const;
+    /// Local variable columns of collocation point (k, i).
+    [[nodiscard]] std::vector<int> node_columns(int k, int i) const;
+    [[nodiscard]] std::vector<int> boundary_columns() const;
+    void gather(const std::vector<int>& cols, const double* z, std::vector<double>& v) const;
+    void update(const double* z, bool need_jacobian);
+    [[nodiscard]] double node_time(int k, int i, const double* z) const;
+
+    const Model& model_;
+    Mesh mesh_;
+    int nx_ = 0, nu_ = 0, np_ = 0, ng_ = 0, ne_ = 0;
+    bool lagrange_ = false, mayer_ = false;
+    std::vector<Segment> seg_;
+    int n_mesh_points_ = 0;  // distinct state points
+    int n_points_ = 0;       // collocation points (sum of segment nodes)
+    int u0_ = 0, p0_ = 0, t0_ = 0, b0_ = 0;
+    int n_vars_ = 0;
+    int path_row_ = 0, event_row_ = 0, order_row_ = 0, n_rows_ = 0;
+
+    // sparsity
+    std::vector<int> jac_row_, jac_col_;
+    std::vector<int> defect_jac_start_;  // per defect row: first entry (D part, then node part)
+    std::vector<int> path_jac_start_;    // per path row
+    int event_jac_start_ = 0;
+    int order_jac_start_ = 0;
+    std::vector<int> hess_row_, hess_col_;
+    std::vector<std::vector<int>> node_hess_index_;  // per point: nv*nv -> entry (-1: upper)
+    std::vector<int> boundary_hess_index_;
+
+    // node data
+    std::vector<std::vector<int>> node_cols_;
+    std::vector<int> boundary_cols_;
+    int n_node_out_ = 0, n_boundary_out_ = 0;
+
+    // caches
+    std::vector<double> z_cache_;
+    bool values_ok_ = false, jacobian_ok_ = false;
+    std::vector<std::vector<double>> node_out_, node_jac_;
+    std::vector<double> boundary_out_, boundary_jac_;
+    std::vector<double> work_v_;
+
+    // scales (for the violation report)
+    Eigen::VectorXd row_scale_;
+};
+
+}  // namespace manta::optimal::detail

@@ -1,0 +1,295 @@
+#pragma once
+/// @file model.hpp
+/// `Model`: the type-erased face of a user problem that the transcription calls, one node at a
+/// time. `make_model(problem)` wraps a problem type (problem.hpp) and differentiates it per node
+/// by forward AD (ad.hpp): first derivatives with `Ad1`, exact Hessians with `Ad2`. Nothing is
+/// recorded between calls, so derivatives follow the branches taken at each evaluation.
+///
+/// Local variables of a collocation node, in order: x (nx), u (nu), p (np), t0, tf, then the
+/// segment's start and end fractions s_lo, s_hi when they are decision variables. Outputs of a
+/// node: q = (h/2) f (nx), the path constraints g (ng), and l = (h/2) w L when the problem has a
+/// Lagrange cost, with h = (tf - t0)(s_hi - s_lo) the segment duration, w the node's LGL weight
+/// and the node's time t = t0 + (tf - t0)(s_lo + (s_hi - s_lo) a).
+///
+/// Boundary variables: x(t0) (nx), x(tf) (nx), p, t0, tf; outputs: the events e (ne), then the
+/// Mayer cost when the problem has one.
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "manta/core/error.hpp"
+#include "manta/optimal/ad.hpp"
+#include "manta/optimal/problem.hpp"
+
+namespace manta::optimal {
+
+/// Where a collocation node sits in time (values; see the file comment).
+struct NodePlacement {
+    double s_lo = 0.0;     ///< segment start as a fraction of [t0, tf]
+    double s_hi = 1.0;     ///< segment end as a fraction of [t0, tf]
+    double a = 0.0;        ///< (tau + 1) / 2 of the node within its segment
+    double weight = 0.0;   ///< LGL weight of the node
+    bool seed_lo = false;  ///< s_lo is a decision variable (a local variable)
+    bool seed_hi = false;  ///< s_hi is a decision variable (a local variable)
+    [[nodiscard]] int n_time_vars() const { return 2 + int(seed_lo) + int(seed_hi); }
+};
+
+/// Type-erased problem evaluated per node (see the file comment for the variable order).
+class Model {
+public:
+    virtual ~Model() = default;
+    /// Sizes, names, bounds.
+    [[nodiscard]] virtual const ProblemInfo& info() const = 0;
+    [[nodiscard]] virtual bool has_lagrange() const = 0;
+    [[nodiscard]] virtual bool has_mayer() const = 0;
+
+    /// f(x, u, p, t) in double (re-simulation, reports).
+    virtual void dynamics(std::span<const double> x, std::span<const double> u,
+                          std::span<const double> p, double t, std::span<double> xdot) const = 0;
+    /// g(x, u, p, t) in double (empty problem: nothing).
+    virtual void path(std::span<const double> x, std::span<const double> u,
+                      std::span<const double> p, double t, std::span<double> g) const = 0;
+
+    /// Node outputs in double. `v`: local variables; `out`: n_node_outputs().
+    virtual void node_values(std::span<const double> v, const NodePlacement& at,
+                             std::span<double> out) const = 0;
+    /// Node outputs and their Jacobian (row-major, n_out x n_local) by forward AD.
+    virtual void node_jacobian(std::span<const double> v, const NodePlacement& at,
+                               std::span<double> out, std::span<double> jac) const = 0;
+    /// Hessian (n_local x n_local, full, symmetric) of sum_k weight_k out_k by forward-over-forward
+    /// AD.
+    virtual void node_hessian(std::span<const double> v, const NodePlacement& at,
+                              std::span<const double> weights, std::span<double> hess) const = 0;
+
+    /// Boundary outputs (events, then Mayer) in double.
+    virtual void boundary_values(std::span<const double> v, std::span<double> out) const = 0;
+    /// Boundary outputs and their Jacobian (row-major).
+    virtual void boundary_jacobian(std::span<const double> v, std::span<double> out,
+                                   std::span<double> jac) const = 0;
+    /// Hessian of sum_k weight_k out_k over the boundary variables (full, symmetric).
+    virtual void boundary_hessian(std::span<const double> v, std::span<const double> weights,
+                                  std::span<double> hess) const = 0;
+
+    /// Number of node outputs: nx + ng (+1 with a Lagrange cost).
+    [[nodiscard]] int n_node_outputs() const {
+        return info().n_states() + info().n_path() + (has_lagrange() ? 1 : 0);
+    }
+    /// Number of local node variables for a placement.
+    [[nodiscard]] int n_node_vars(const NodePlacement& at) const {
+        return info().n_states() + info().n_controls() + info().n_parameters() + at.n_time_vars();
+    }
+    /// Number of boundary outputs: ne (+1 with a Mayer cost).
+    [[nodiscard]] int n_boundary_outputs() const {
+        return info().n_events() + (has_mayer() ? 1 : 0);
+    }
+    /// Number of boundary variables: 2 nx + np + 2.
+    [[nodiscard]] int n_boundary_vars() const {
+        return 2 * info().n_states() + info().n_parameters() + 2;
+    }
+};
+
+namespace detail {
+
+template <class P, class T>
+concept HasPath = requires(const P& p, std::span<const T> x, const T& t, std::span<T> g) {
+    p.path(x, x, x, t, g);
+};
+template <class P, class T>
+concept HasLagrange = requires(const P& p, std::span<const T> x, const T& t) {
+    { p.lagrange(x, x, x, t) } -> std::convertible_to<T>;
+};
+template <class P, class T>
+concept HasEvents = requires(const P& p, std::span<const T> x, const T& t, std::span<T> e) {
+    p.events(x, x, x, t, t, e);
+};
+template <class P, class T>
+concept HasMayer = requires(const P& p, std::span<const T> x, const T& t) {
+    { p.mayer(x, x, x, t, t) } -> std::convertible_to<T>;
+};
+
+/// Seed n AD variables of type A from plain values.
+template <class A>
+std::vector<A> seed(std::span<const double> v);
+template <>
+inline std::vector<Ad1> seed<Ad1>(std::span<const double> v) {
+    const int n = static_cast<int>(v.size());
+    std::vector<Ad1> r;
+    r.reserve(v.size());
+    for (int i = 0; i < n; ++i) r.push_back(Ad1::variable(v[i], n, i));
+    return r;
+}
+template <>
+inline std::vector<Ad2> seed<Ad2>(std::span<const double> v) {
+    const int n = static_cast<int>(v.size());
+    std::vector<Ad2> r;
+    r.reserve(v.size());
+    for (int i = 0; i < n; ++i) r.push_back(Ad2::variable(Ad1::variable(v[i], n, i), n, i));
+    return r;
+}
+
+}  // namespace detail
+
+/// `Model` of a problem type P, differentiated by forward AD. Holds a copy of the problem.
+template <OptimalControlProblem P>
+class ProblemModel final : public Model {
+public:
+    explicit ProblemModel(P problem) : problem_(std::move(problem)), info_(problem_.info()) {
+        info_.validate();
+        const int nx = info_.n_states();
+        if (nx + info_.n_controls() + info_.n_parameters() + 4 > kMaxDirections ||
+            2 * nx + info_.n_parameters() + 2 > kMaxDirections) {
+            throw InputError("optimal control problem '" + info_.name + "': " + std::to_string(nx) +
+                             " states, " + std::to_string(info_.n_controls()) + " controls and " +
+                             std::to_string(info_.n_parameters()) +
+                             " parameters exceed the AD capacity of " +
+                             std::to_string(kMaxDirections) + " directions per node");
+        }
+        if (info_.n_path() > 0 && !detail::HasPath<P, double>) {
+            throw InputError("optimal control problem '" + info_.name +
+                             "' declares path constraints but has no path() function");
+        }
+        if (info_.n_events() > 0 && !detail::HasEvents<P, double>) {
+            throw InputError("optimal control problem '" + info_.name +
+                             "' declares events but has no events() function");
+        }
+    }
+
+    [[nodiscard]] const ProblemInfo& info() const override { return info_; }
+    [[nodiscard]] bool has_lagrange() const override { return detail::HasLagrange<P, double>; }
+    [[nodiscard]] bool has_mayer() const override { return detail::HasMayer<P, double>; }
+    /// The wrapped problem.
+    [[nodiscard]] const P& problem() const { return problem_; }
+
+    void dynamics(std::span<const double> x, std::span<const double> u, std::span<const double> p,
+                  double t, std::span<double> xdot) const override {
+        problem_.dynamics(x, u, p, t, xdot);
+    }
+    void path(std::span<const double> x, std::span<const double> u, std::span<const double> p,
+              double t, std::span<double> g) const override {
+        if constexpr (detail::HasPath<P, double>) {
+            if (!g.empty()) problem_.path(x, u, p, t, g);
+        }
+    }
+
+    void node_values(std::span<const double> v, const NodePlacement& at,
+                     std::span<double> out) const override {
+        node_eval<double>(v, at, out);
+    }
+    void node_jacobian(std::span<const double> v, const NodePlacement& at, std::span<double> out,
+                       std::span<double> jac) const override {
+        const auto vars = detail::seed<Ad1>(v);
+        std::vector<Ad1> o(out.size());
+        node_eval<Ad1>(std::span<const Ad1>(vars), at, std::span<Ad1>(o));
+        extract_first(o, static_cast<int>(v.size()), out, jac);
+    }
+    void node_hessian(std::span<const double> v, const NodePlacement& at,
+                      std::span<const double> weights, std::span<double> hess) const override {
+        const auto vars = detail::seed<Ad2>(v);
+        std::vector<Ad2> o(weights.size());
+        node_eval<Ad2>(std::span<const Ad2>(vars), at, std::span<Ad2>(o));
+        extract_second(o, weights, static_cast<int>(v.size()), hess);
+    }
+
+    void boundary_values(std::span<const double> v, std::span<double> out) const override {
+        boundary_eval<double>(v, out);
+    }
+    void boundary_jacobian(std::span<const double> v, std::span<double> out,
+                           std::span<double> jac) const override {
+        const auto vars = detail::seed<Ad1>(v);
+        std::vector<Ad1> o(out.size());
+        boundary_eval<Ad1>(std::span<const Ad1>(vars), std::span<Ad1>(o));
+        extract_first(o, static_cast<int>(v.size()), out, jac);
+    }
+    void boundary_hessian(std::span<const double> v, std::span<const double> weights,
+                          std::span<double> hess) const override {
+        const auto vars = detail::seed<Ad2>(v);
+        std::vector<Ad2> o(weights.size());
+        boundary_eval<Ad2>(std::span<const Ad2>(vars), std::span<Ad2>(o));
+        extract_second(o, weights, static_cast<int>(v.size()), hess);
+    }
+
+private:
+    /// Node outputs in scalar type T (see the file comment).
+    template <class T>
+    void node_eval(std::span<const T> v, const NodePlacement& at, std::span<T> out) const {
+        const std::size_t nx = info_.states.size();
+        const std::size_t nu = info_.controls.size();
+        const std::size_t np = info_.parameters.size();
+        const std::size_t ng = info_.path.size();
+        const auto x = v.subspan(0, nx);
+        const auto u = v.subspan(nx, nu);
+        const auto p = v.subspan(nx + nu, np);
+        std::size_t k = nx + nu + np;
+        const T& t0 = v[k];
+        const T& tf = v[k + 1];
+        k += 2;
+        const T s_lo = at.seed_lo ? v[k++] : T(at.s_lo);
+        const T s_hi = at.seed_hi ? v[k] : T(at.s_hi);
+        const T duration = tf - t0;
+        const T half_h = 0.5 * duration * (s_hi - s_lo);
+        const T t = t0 + duration * (s_lo + (s_hi - s_lo) * at.a);
+        std::vector<T> xdot(nx);
+        problem_.dynamics(x, u, p, t, std::span<T>(xdot));
+        for (std::size_t r = 0; r < nx; ++r) out[r] = half_h * xdot[r];
+        if constexpr (detail::HasPath<P, T>) {
+            if (ng > 0) problem_.path(x, u, p, t, out.subspan(nx, ng));
+        }
+        if constexpr (detail::HasLagrange<P, T>) {
+            out[nx + ng] = half_h * at.weight * problem_.lagrange(x, u, p, t);
+        }
+    }
+
+    /// Boundary outputs in scalar type T.
+    template <class T>
+    void boundary_eval(std::span<const T> v, std::span<T> out) const {
+        const std::size_t nx = info_.states.size();
+        const std::size_t np = info_.parameters.size();
+        const std::size_t ne = info_.events.size();
+        const auto x0 = v.subspan(0, nx);
+        const auto xf = v.subspan(nx, nx);
+        const auto p = v.subspan(2 * nx, np);
+        const T& t0 = v[2 * nx + np];
+        const T& tf = v[2 * nx + np + 1];
+        if constexpr (detail::HasEvents<P, T>) {
+            if (ne > 0) problem_.events(x0, xf, p, t0, tf, out.subspan(0, ne));
+        }
+        if constexpr (detail::HasMayer<P, T>) {
+            out[ne] = problem_.mayer(x0, xf, p, t0, tf);
+        }
+    }
+
+    static void extract_first(const std::vector<Ad1>& o, int n, std::span<double> out,
+                              std::span<double> jac) {
+        for (std::size_t r = 0; r < o.size(); ++r) {
+            out[r] = o[r].value();
+            for (int c = 0; c < n; ++c) jac[r * n + c] = o[r].derivative(c);
+        }
+    }
+    static void extract_second(const std::vector<Ad2>& o, std::span<const double> weights, int n,
+                               std::span<double> hess) {
+        std::fill(hess.begin(), hess.end(), 0.0);
+        for (std::size_t r = 0; r < o.size(); ++r) {
+            const double w = weights[r];
+            if (w == 0.0) continue;
+            for (int i = 0; i < n; ++i) {
+                const Ad1 di = o[r].derivative(i);
+                for (int j = 0; j < n; ++j) hess[i * n + j] += w * di.derivative(j);
+            }
+        }
+    }
+
+    P problem_;
+    ProblemInfo info_;
+};
+
+/// Wrap a problem type as a Model (copies the problem).
+template <OptimalControlProblem P>
+[[nodiscard]] std::unique_ptr<Model> make_model(P problem) {
+    return std::make_unique<ProblemModel<P>>(std::move(problem));
+}
+
+}  // namespace manta::optimal

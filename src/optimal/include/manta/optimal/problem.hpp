@@ -1,0 +1,96 @@
+#pragma once
+/// @file problem.hpp
+/// Definition of a single-phase optimal-control problem (docs/optimal-control.md):
+///
+///     minimise  Φ(x(t0), x(tf), p, t0, tf) + ∫ L(x, u, p, t) dt
+///     subject to  ẋ = f(x, u, p, t),  g_lo <= g(x, u, p, t) <= g_hi (path),
+///                 e_lo <= e(x(t0), x(tf), p, t0, tf) <= e_hi (events),
+///                 bounds on x, u, p, t0, tf and on x(t0), x(tf).
+///
+/// The user's problem is a type with `ProblemInfo info() const` and member templates
+/// evaluated on `double` and on the AD scalars of ad.hpp:
+///
+///     template <class T> void dynamics(std::span<const T> x, std::span<const T> u,
+///                                      std::span<const T> p, const T& t, std::span<T> xdot) const;
+///     template <class T> void path(x, u, p, t, std::span<T> g) const;            // optional
+///     template <class T> T lagrange(x, u, p, t) const;                            // optional
+///     template <class T> void events(std::span<const T> x0, std::span<const T> xf,
+///                                    std::span<const T> p, const T& t0, const T& tf,
+///                                    std::span<T> e) const;                       // optional
+///     template <class T> T mayer(x0, xf, p, t0, tf) const;                        // optional
+///
+/// Branch on `core::value_of(x)` (or `optimal::primal`) and compute in T, so derivatives follow
+/// the branch taken at each evaluation.
+
+#include <limits>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace manta::optimal {
+
+/// +infinity, for an absent bound.
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// A closed interval [lower, upper]; lower == upper fixes the quantity.
+struct Bounds {
+    double lower = -kInf;  ///< lower bound (-kInf: none)
+    double upper = kInf;   ///< upper bound (+kInf: none)
+    [[nodiscard]] bool is_fixed() const { return lower == upper; }
+};
+/// The interval [v, v].
+[[nodiscard]] inline Bounds fixed(double v) {
+    return {v, v};
+}
+
+/// A named decision quantity (state, control, static parameter) with bounds and scale.
+struct Variable {
+    std::string name;      ///< used in reports and CSV headers (include the unit: "h_ft")
+    double lower = -kInf;  ///< lower bound at every node
+    double upper = kInf;   ///< upper bound at every node
+    double scale = 0.0;    ///< typical magnitude; 0: automatic (from bounds, else from the guess)
+};
+
+/// A named constraint function with its bounds (equality when lower == upper).
+struct Constraint {
+    std::string name;    ///< used in reports ("most violated constraints")
+    double lower = 0.0;  ///< lower bound (-kInf: none)
+    double upper = 0.0;  ///< upper bound (+kInf: none)
+    double scale = 0.0;  ///< typical magnitude; 0: automatic (from the bounds, else 1)
+};
+
+/// Sizes, names, bounds and scales of a problem. Sizes: at least one state; at most
+/// kMaxDirections local variables per node (states + controls + parameters + 4) and per
+/// boundary function (2 states + parameters + 2).
+struct ProblemInfo {
+    std::string name;                    ///< problem name (reports, CSV)
+    std::vector<Variable> states;        ///< x
+    std::vector<Variable> controls;      ///< u (may be empty)
+    std::vector<Variable> parameters;    ///< p, static (may be empty)
+    std::vector<Constraint> path;        ///< g(x, u, p, t), enforced at every node
+    std::vector<Constraint> events;      ///< e(x(t0), x(tf), p, t0, tf)
+    Bounds initial_time{0.0, 0.0};       ///< t0 (fixed at 0 by default)
+    Bounds final_time{0.0, kInf};        ///< tf (free, positive, by default)
+    double time_scale = 0.0;             ///< typical duration; 0: automatic
+    std::vector<Bounds> initial_states;  ///< bounds on x(t0) (empty: those of `states`)
+    std::vector<Bounds> final_states;    ///< bounds on x(tf) (empty: those of `states`)
+    double objective_scale = 0.0;        ///< typical |objective|; 0: |objective at the guess|
+
+    [[nodiscard]] int n_states() const { return static_cast<int>(states.size()); }
+    [[nodiscard]] int n_controls() const { return static_cast<int>(controls.size()); }
+    [[nodiscard]] int n_parameters() const { return static_cast<int>(parameters.size()); }
+    [[nodiscard]] int n_path() const { return static_cast<int>(path.size()); }
+    [[nodiscard]] int n_events() const { return static_cast<int>(events.size()); }
+    /// Check sizes, names and bounds; throws InputError naming the offending item.
+    void validate() const;
+};
+
+/// What a problem type must provide (dynamics on double; the rest is optional).
+template <class P>
+concept OptimalControlProblem = requires(const P& p, std::span<const double> x, double t,
+                                         std::span<double> out) {
+    { p.info() } -> std::convertible_to<ProblemInfo>;
+    p.dynamics(x, x, x, t, out);
+};
+
+}  // namespace manta::optimal

@@ -1,0 +1,345 @@
+/// @file nlp.cpp
+/// The IPOPT adapter (the only file that sees IPOPT) and `solve`.
+
+#include <time.h>
+#include <coin/IpIpoptApplication.hpp>
+#include <coin/IpSolveStatistics.hpp>
+#include <coin/IpTNLP.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "detail/transcription.hpp"
+#include "manta/core/error.hpp"
+#include "manta/optimal/solve.hpp"
+
+namespace manta::optimal {
+
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+double process_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+bool all_finite(const double* v, int n) {
+    for (int i = 0; i < n; ++i) {
+        if (!std::isfinite(v[i])) return false;
+    }
+    return true;
+}
+
+/// IPOPT's view of the transcription.
+class Nlp final : public Ipopt::TNLP {
+public:
+    Nlp(detail::Transcription& tr, const Guess& guess, const SolverOptions& options)
+        : tr_(tr), options_(options) {
+        z0_.resize(tr.n_vars());
+        tr_.initial_point(guess, z0_.data());
+        tr_.scaling(z0_.data(), var_scale_, row_scale_, obj_scale_);
+        gl_.resize(tr.n_rows());
+        gu_.resize(tr.n_rows());
+        xl_.resize(tr.n_vars());
+        xu_.resize(tr.n_vars());
+        tr_.bounds(xl_.data(), xu_.data(), gl_.data(), gu_.data());
+        g_work_.resize(tr.n_rows());
+    }
+
+    bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
+                      IndexStyleEnum& index_style) override {
+        n = tr_.n_vars();
+        m = tr_.n_rows();
+        nnz_jac_g = tr_.nnz_jacobian();
+        nnz_h_lag = tr_.nnz_hessian();
+        index_style = C_STYLE;
+        return true;
+    }
+
+    bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l,
+                         Number* g_u) override {
+        std::copy(xl_.begin(), xl_.begin() + n, x_l);
+        std::copy(xu_.begin(), xu_.begin() + n, x_u);
+        std::copy(gl_.begin(), gl_.begin() + m, g_l);
+        std::copy(gu_.begin(), gu_.begin() + m, g_u);
+        return true;
+    }
+
+    bool get_scaling_parameters(Number& obj_scaling, bool& use_x_scaling, Index n,
+                                Number* x_scaling, bool& use_g_scaling, Index m,
+                                Number* g_scaling) override {
+        obj_scaling = 1.0 / obj_scale_;
+        use_x_scaling = true;
+        use_g_scaling = true;
+        for (Index i = 0; i < n; ++i) x_scaling[i] = 1.0 / var_scale_(i);
+        for (Index j = 0; j < m; ++j) g_scaling[j] = 1.0 / row_scale_(j);
+        return true;
+    }
+
+    bool get_starting_point(Index n, bool init_x, Number* x, bool /*init_z*/, Number* /*z_L*/,
+                            Number* /*z_U*/, Index /*m*/, bool /*init_lambda*/,
+                            Number* /*lambda*/) override {
+        if (init_x) std::copy(z0_.begin(), z0_.begin() + n, x);
+        return true;
+    }
+
+    bool eval_f(Index /*n*/, const Number* x, bool /*new_x*/, Number& obj_value) override {
+        return guarded([&] {
+            obj_value = tr_.objective(x);
+            return std::isfinite(obj_value);
+        });
+    }
+    bool eval_grad_f(Index n, const Number* x, bool /*new_x*/, Number* grad_f) override {
+        return guarded([&] {
+            tr_.gradient(x, grad_f);
+            return all_finite(grad_f, n);
+        });
+    }
+    bool eval_g(Index /*n*/, const Number* x, bool /*new_x*/, Index m, Number* g) override {
+        return guarded([&] {
+            tr_.constraints(x, g);
+            return all_finite(g, m);
+        });
+    }
+    bool eval_jac_g(Index n, const Number* x, bool /*new_x*/, Index /*m*/, Index nele_jac,
+                    Index* iRow, Index* jCol, Number* values) override {
+        if (values == nullptr) {
+            tr_.jacobian_structure(iRow, jCol);
+            return true;
+        }
+        return guarded([&] {
+            tr_.jacobian(x, values);
+            // IPOPT evaluates the Jacobian at accepted iterates only: remember the point
+            last_x_.assign(x, x + n);
+            return all_finite(values, nele_jac);
+        });
+    }
+    bool eval_h(Index /*n*/, const Number* x, bool /*new_x*/, Number obj_factor, Index /*m*/,
+                const Number* lambda, bool /*new_lambda*/, Index nele_hess, Index* iRow,
+                Index* jCol, Number* values) override {
+        if (values == nullptr) {
+            tr_.hessian_structure(iRow, jCol);
+            return true;
+        }
+        return guarded([&] {
+            tr_.hessian(x, obj_factor, lambda, values);
+            return all_finite(values, nele_hess);
+        });
+    }
+
+    bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number obj_value,
+                               Number inf_pr, Number inf_du, Number mu, Number /*d_norm*/,
+                               Number /*regularization_size*/, Number /*alpha_du*/, Number alpha_pr,
+                               Index /*ls_trials*/, const Ipopt::IpoptData* /*ip_data*/,
+                               Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
+        if (error_) return false;
+        iterations_ = iter;
+        if (!last_x_.empty()) {
+            const double v = scaled_violation(last_x_.data());
+            const double obj = tr_.objective(last_x_.data());
+            if (best_x_.empty() || v < best_violation_ ||
+                (v == best_violation_ && obj < best_objective_)) {
+                best_x_ = last_x_;
+                best_violation_ = v;
+                best_objective_ = obj;
+            }
+        }
+        if (options_.progress) {
+            IterationInfo info;
+            info.iteration = iter;
+            info.objective = obj_value;
+            info.infeasibility = inf_pr;
+            info.dual_infeasibility = inf_du;
+            info.mu = mu;
+            info.step = alpha_pr;
+            info.restoration = mode == Ipopt::RestorationPhaseMode;
+            if (!options_.progress(info)) return false;
+        }
+        return true;
+    }
+
+    void finalize_solution(Ipopt::SolverReturn status, Index n, const Number* x,
+                           const Number* /*z_L*/, const Number* /*z_U*/, Index m,
+                           const Number* /*g*/, const Number* lambda, Number obj_value,
+                           const Ipopt::IpoptData* /*ip_data*/,
+                           Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
+        solver_return_ = static_cast<int>(status);
+        final_x_.assign(x, x + n);
+        final_lambda_.assign(lambda, lambda + m);
+        final_objective_ = obj_value;
+    }
+
+    /// Largest scaled distance of the constraints from their bounds at z.
+    double scaled_violation(const double* z) {
+        tr_.constraints(z, g_work_.data());
+        double v = 0.0;
+        for (int r = 0; r < tr_.n_rows(); ++r) {
+            const double a = std::max({gl_[r] - g_work_[r], g_work_[r] - gu_[r], 0.0});
+            if (std::isnan(g_work_[r])) return std::numeric_limits<double>::infinity();
+            v = std::max(v, a / row_scale_(r));
+        }
+        return v;
+    }
+
+    std::exception_ptr error_;
+    std::vector<double> final_x_, final_lambda_, best_x_;
+    double final_objective_ = 0.0;
+    double best_violation_ = std::numeric_limits<double>::infinity();
+    double best_objective_ = 0.0;
+    int solver_return_ = 0;
+    int iterations_ = 0;
+
+private:
+    template <class F>
+    bool guarded(F&& f) {
+        try {
+            return f();
+        } catch (...) {
+            if (!error_) error_ = std::current_exception();
+            return false;
+        }
+    }
+
+    detail::Transcription& tr_;
+    const SolverOptions& options_;
+    std::vector<double> z0_, xl_, xu_, gl_, gu_, g_work_, last_x_;
+    Eigen::VectorXd var_scale_, row_scale_;
+    double obj_scale_ = 1.0;
+};
+
+std::string status_text(Ipopt::ApplicationReturnStatus s) {
+    switch (s) {
+        case Ipopt::Solve_Succeeded:
+            return "Solve_Succeeded: optimal solution found";
+        case Ipopt::Solved_To_Acceptable_Level:
+            return "Solved_To_Acceptable_Level: solved to the acceptable (looser) tolerance";
+        case Ipopt::Infeasible_Problem_Detected:
+            return "Infeasible_Problem_Detected: converged to a point of local infeasibility";
+        case Ipopt::Search_Direction_Becomes_Too_Small:
+            return "Search_Direction_Becomes_Too_Small";
+        case Ipopt::Diverging_Iterates:
+            return "Diverging_Iterates: iterates are unbounded";
+        case Ipopt::User_Requested_Stop:
+            return "User_Requested_Stop: stopped by the caller";
+        case Ipopt::Feasible_Point_Found:
+            return "Feasible_Point_Found";
+        case Ipopt::Maximum_Iterations_Exceeded:
+            return "Maximum_Iterations_Exceeded: iteration limit reached";
+        case Ipopt::Restoration_Failed:
+            return "Restoration_Failed: the feasibility restoration phase failed";
+        case Ipopt::Error_In_Step_Computation:
+            return "Error_In_Step_Computation";
+        case Ipopt::Maximum_CpuTime_Exceeded:
+            return "Maximum_CpuTime_Exceeded";
+        case Ipopt::Not_Enough_Degrees_Of_Freedom:
+            return "Not_Enough_Degrees_Of_Freedom: more equality constraints than variables";
+        case Ipopt::Invalid_Problem_Definition:
+            return "Invalid_Problem_Definition";
+        case Ipopt::Invalid_Option:
+            return "Invalid_Option";
+        case Ipopt::Invalid_Number_Detected:
+            return "Invalid_Number_Detected: NaN or Inf in a function or derivative";
+        case Ipopt::Unrecoverable_Exception:
+            return "Unrecoverable_Exception";
+        case Ipopt::NonIpopt_Exception_Thrown:
+            return "NonIpopt_Exception_Thrown";
+        case Ipopt::Insufficient_Memory:
+            return "Insufficient_Memory";
+        case Ipopt::Internal_Error:
+            return "Internal_Error";
+    }
+    return "IPOPT status " + std::to_string(static_cast<int>(s));
+}
+
+SolveStatus map_status(Ipopt::ApplicationReturnStatus s) {
+    switch (s) {
+        case Ipopt::Solve_Succeeded:
+            return SolveStatus::solved;
+        case Ipopt::Solved_To_Acceptable_Level:
+            return SolveStatus::solved_acceptable;
+        case Ipopt::Infeasible_Problem_Detected:
+            return SolveStatus::infeasible;
+        case Ipopt::Maximum_Iterations_Exceeded:
+        case Ipopt::Maximum_CpuTime_Exceeded:
+            return SolveStatus::iteration_limit;
+        case Ipopt::User_Requested_Stop:
+            return SolveStatus::stopped;
+        default:
+            return SolveStatus::failed;
+    }
+}
+
+}  // namespace
+
+Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
+               const SolverOptions& options) {
+    const double cpu0 = process_cpu_seconds();
+    const auto wall0 = std::chrono::steady_clock::now();
+
+    detail::Transcription tr(model, mesh);
+    Ipopt::SmartPtr<Nlp> nlp = new Nlp(tr, guess, options);
+
+    Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+    auto opt = app->Options();
+    opt->SetIntegerValue("print_level", options.print_level);
+    opt->SetStringValue("sb", "yes");
+    opt->SetNumericValue("tol", options.tolerance);
+    opt->SetNumericValue("constr_viol_tol", options.constraint_tolerance);
+    opt->SetIntegerValue("max_iter", options.max_iterations);
+    opt->SetNumericValue("max_cpu_time", options.max_cpu_time);
+    opt->SetStringValue("hessian_approximation",
+                        options.hessian == HessianMode::exact ? "exact" : "limited-memory");
+    opt->SetStringValue("nlp_scaling_method",
+                        options.automatic_scaling ? "user-scaling" : "gradient-based");
+    opt->SetStringValue("linear_solver", options.linear_solver);
+    opt->SetStringValue("mu_strategy", "adaptive");
+    Ipopt::ApplicationReturnStatus st = app->Initialize("");
+    if (st != Ipopt::Solve_Succeeded) {
+        throw NumericalError("IPOPT could not be initialised: " + status_text(st));
+    }
+    st = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
+    if (nlp->error_) std::rethrow_exception(nlp->error_);
+
+    Solution sol;
+    sol.status = map_status(st);
+    sol.ipopt_status = static_cast<int>(st);
+    sol.status_text = status_text(st);
+    sol.iterations =
+        Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : nlp->iterations_;
+    sol.n_variables = tr.n_vars();
+    sol.n_constraints = tr.n_rows();
+    sol.n_jacobian_nonzeros = tr.nnz_jacobian();
+    sol.n_hessian_nonzeros = options.hessian == HessianMode::exact ? tr.nnz_hessian() : 0;
+
+    const bool have_final = static_cast<int>(nlp->final_x_.size()) == tr.n_vars();
+    const double* z = have_final ? nlp->final_x_.data() : nullptr;
+    const double* lambda = have_final ? nlp->final_lambda_.data() : nullptr;
+    if (!sol.converged() && !nlp->best_x_.empty()) {
+        // on failure report the least infeasible accepted iterate
+        const double final_v = have_final ? nlp->scaled_violation(z) : kInf;
+        if (nlp->best_violation_ < final_v) {
+            z = nlp->best_x_.data();
+            lambda = nullptr;
+        }
+    }
+    if (z == nullptr) {
+        throw NumericalError("IPOPT returned no iterate: " + sol.status_text);
+    }
+    tr.extract(z, lambda, options.n_reported_violations, sol);
+    sol.objective = tr.objective(z);
+    sol.cpu_time = process_cpu_seconds() - cpu0;
+    sol.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (options.resimulate) {
+        sol.resimulation = resimulate(model, sol, options.resimulation_tolerance);
+    }
+    if (!sol.converged() && !options.failure_csv.empty()) write_csv(sol, options.failure_csv);
+    return sol;
+}
+
+}  // namespace manta::optimal
