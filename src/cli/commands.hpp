@@ -26,6 +26,8 @@ void add_simulate(CLI::App& app, Action& action);
 void add_demo(CLI::App& app, Action& action);
 void add_vlm(CLI::App& app, Action& action);
 void add_vlm_unsteady(CLI::App& app, Action& action);
+void add_optimise(CLI::App& app, Action& action);
+void add_tables(CLI::App& app, Action& action);
 
 /// Options every aircraft command shares: the aircraft file and its loading case.
 struct AircraftOptions {

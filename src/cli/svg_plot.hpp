@@ -20,4 +20,31 @@ struct Panel {
                                              const std::vector<double>& t,
                                              const std::vector<Panel>& panels, int columns = 2);
 
+/// A curve of an x-y panel, optionally with a shaded band [band_lo, band_hi] (e.g. +-2 sigma).
+struct XyCurve {
+    std::string label;  ///< legend text
+    std::vector<double> x, y;
+    std::vector<double> band_lo, band_hi;  ///< empty: no band; else sized as x
+    std::string colour = "#1f77b4";
+};
+
+/// Scattered points (markers) of an x-y panel.
+struct XyPoints {
+    std::string label;
+    std::vector<double> x, y;
+    std::string colour = "#d62728";
+};
+
+/// One x-y panel: curves with optional bands and marker sets.
+struct XyPanel {
+    std::string y_label;  ///< with unit
+    std::vector<XyCurve> curves;
+    std::vector<XyPoints> points;
+};
+
+/// SVG text of x-y panels sharing the x label, in a grid of `columns`, with a legend of the
+/// first panel's curves and point sets under the title.
+[[nodiscard]] std::string svg_xy_panels(const std::string& title, const std::string& x_label,
+                                        const std::vector<XyPanel>& panels, int columns = 3);
+
 }  // namespace manta::cli

@@ -38,7 +38,7 @@ check "manta --help" 0 "$manta" --help
 contains "help lists subcommands" "$work/out.txt" "atmosphere"
 check "manta --version" 0 "$manta" --version
 contains "version text" "$work/out.txt" "manta [0-9]+\.[0-9]+\.[0-9]+"
-for sub in atmosphere "config check" trim modes simulate demo vlm vlm-unsteady vlm-oscillation; do
+for sub in atmosphere "config check" trim modes simulate demo vlm vlm-unsteady vlm-oscillation tables optimise; do
     # shellcheck disable=SC2086
     check "manta $sub --help" 0 "$manta" $sub --help
 done
@@ -121,6 +121,72 @@ check "vlm-oscillation" 0 "$manta" vlm-oscillation --aircraft "$work/plate.avl" 
 json_ok "vlm-oscillation json"
 contains "oscillation out of phase" "$work/out.txt" '"out_of_phase_fourier"'
 check "vlm-oscillation bad axis" 2 "$manta" vlm-oscillation --aircraft "$work/plate.avl" --axis spin
+
+# tables: a small analytic campaign, errors, kill -9 and resume, changed source fingerprint
+campaigns=$root/examples/campaigns
+check "tables small analytic" 0 "$manta" tables --campaign "$campaigns/analytic-small.yaml" --out "$work/tab" --jobs 2 --json
+json_ok "tables json"
+contains "tables counts" "$work/out.txt" '"evaluated": 90'
+for f in database.yaml tables.csv dynamic.csv samples.csv ceasiom_aero.txt ceasiom_control.txt jsbsim_aero.xml summary.json plot_elevator.svg; do
+    if [ -s "$work/tab/$f" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: tables output $f missing"; fi
+done
+contains "tables csv header" "$work/tab/tables.csv" "^table,alpha_deg,mach,beta_deg,delta_deg,CL,CD,CY,Cl,Cm,Cn,sigma_CL"
+contains "ceasiom header" "$work/tab/ceasiom_aero.txt" "alpha +Mach +beta +p_hat +q_hat +r_hat +CL +CD +Cm +CY +Cl +Cn"
+if command -v python3 >/dev/null; then
+    check "jsbsim xml parses" 0 python3 -c 'import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); assert r.tag == "aerodynamics" and len(r.findall("axis")) == 6' "$work/tab/jsbsim_aero.xml"
+fi
+check "tables database loads" 0 "$manta" config check "$work/tab/database.yaml"
+# The generated database flies: the Ranger with its aero model replaced by the tables.
+sed '/^aero:/,$d' "$ranger" > "$work/tab/aircraft.yaml"
+printf 'aero:\n  database: database.yaml\n' >> "$work/tab/aircraft.yaml"
+check "trim on generated tables" 0 "$manta" trim --aircraft "$work/tab/aircraft.yaml" --speed 150 --altitude 3000 --json
+json_ok "trim on generated tables json"
+check "tables rerun reuses everything" 0 "$manta" tables --campaign "$campaigns/analytic-small.yaml" --out "$work/tab" --json
+contains "tables rerun evaluates nothing" "$work/out.txt" '"evaluated": 0'
+contains "tables rerun reuses" "$work/out.txt" '"reused": 90'
+printf 'schema_version: 1\nname: bad\nsource: {type: analytic}\nstatic:\n  budjet: 30\n' > "$work/bad_campaign.yaml"
+check "tables bad key" 2 "$manta" tables --campaign "$work/bad_campaign.yaml" --out "$work/tab_bad"
+contains "tables bad key line" "$work/err.txt" "bad_campaign.yaml:5.*budjet.*did you mean 'budget'"
+printf 'schema_version: 1\nname: bad\nsource: {type: euler}\n' > "$work/euler_campaign.yaml"
+check "tables euler not yet" 2 "$manta" tables --campaign "$work/euler_campaign.yaml" --out "$work/tab_bad"
+contains "tables euler message" "$work/err.txt" "not available yet"
+sed 's/type: analytic/type: analytic\n  parameters: {CL_alpha: 5.5}/' "$campaigns/analytic-small.yaml" > "$work/changed.yaml"
+check "tables changed fingerprint" 2 "$manta" tables --campaign "$work/changed.yaml" --out "$work/tab"
+contains "tables fingerprint message" "$work/err.txt" "samples.sqlite.*fingerprint 'analytic:[0-9a-f]+.*fingerprint 'analytic:[0-9a-f]+.*--accept-changed-source"
+check "tables accept changed source" 0 "$manta" tables --campaign "$work/changed.yaml" --out "$work/tab" --accept-changed-source
+check "tables restart" 0 "$manta" tables --campaign "$work/changed.yaml" --out "$work/tab" --restart --json
+contains "tables restart evaluates all" "$work/out.txt" '"reused": 0'
+# kill -9 part-way, resume: the same outputs as an uninterrupted run, no sample computed twice
+check "tables slow reference" 0 "$manta" tables --campaign "$campaigns/analytic-slow.yaml" --out "$work/slow_ref" --jobs 2
+"$manta" tables --campaign "$campaigns/analytic-slow.yaml" --out "$work/slow" --jobs 2 >/dev/null 2>&1 &
+pid=$!
+sleep 0.8
+kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+check "tables resume after kill -9" 0 "$manta" tables --campaign "$campaigns/analytic-slow.yaml" --out "$work/slow" --jobs 2 --json
+cp "$work/out.txt" "$work/resume.json"
+contains "tables resume reports reused samples" "$work/err.txt" "resuming from .*samples.sqlite: [1-9][0-9]* finished samples reused"
+# the first "reused"/"evaluated" keys in the pretty-printed JSON are the totals of "samples"
+reused=$(grep -m1 -oE '"reused": [0-9]+' "$work/resume.json" | grep -oE '[0-9]+$')
+evaluated=$(grep -m1 -oE '"evaluated": [0-9]+' "$work/resume.json" | grep -oE '[0-9]+$')
+if [ "${reused:-0}" -gt 0 ] && [ $((reused + evaluated)) -eq 74 ]; then
+    pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: resumed run: reused ${reused:-?} + evaluated ${evaluated:-?} != 74"; fi
+for f in database.yaml tables.csv dynamic.csv ceasiom_aero.txt ceasiom_control.txt jsbsim_aero.xml; do
+    if cmp -s "$work/slow_ref/$f" "$work/slow/$f"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: resumed $f differs from the uninterrupted run"; fi
+done
+
+# optimise: the generic validation problems of the optimal-control module
+check "optimise brachistochrone" 0 "$manta" optimise --problem brachistochrone --nodes 30 --json
+json_ok "optimise json"
+contains "optimise converged" "$work/out.txt" '"converged": true'
+contains "optimise brachistochrone time" "$work/out.txt" '"final_time_error": (-?[0-9.]+e-(0[7-9]|1[0-9])|-?0\.0,)'
+check "optimise climb" 0 "$manta" optimise --problem min-time-to-climb --nodes 40 --json
+contains "optimise climb time" "$work/out.txt" '"final_time": 321\.(0[89]|1[0-3])'
+check "optimise double integrator refined" 0 "$manta" optimise --problem double-integrator --nodes 20 --refine --out "$work/di" --json
+contains "optimise refined segments" "$work/out.txt" '"segments": 2'
+[ -s "$work/di/solution.csv" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: optimise wrote no solution.csv"; }
+check "optimise failed run" 1 "$manta" optimise --problem min-time-to-climb --max-iter 3 --out "$work/opt_fail"
+[ -s "$work/opt_fail/best_iterate.csv" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: optimise failure wrote no best_iterate.csv"; }
+check "optimise too few nodes" 2 "$manta" optimise --problem min-time-to-climb --nodes 1
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
