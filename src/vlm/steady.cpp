@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <numbers>
 
 #include "manta/core/error.hpp"
 #include "manta/vlm/detail/biot_savart.hpp"
+#include "manta/vlm/detail/kernels.hpp"
 
 namespace manta::vlm {
 
@@ -27,39 +31,16 @@ Vector3d omega_geometry(const Reference& ref, double p_hat, double q_hat, double
 
 namespace {
 
-/// Velocity at p of a straight vortex segment x1 -> x2 of unit circulation with a finite core
-/// of squared radius rc2 (the Scully / Burnham-Hallock profile, tangential velocity
-/// Gamma r / (2 pi (r^2 + rc^2)) near an infinite line): the Biot-Savart law with the squared
-/// distance from the line and from the end points each increased by rc^2. Zero on the segment's
-/// line.
-Vector3d cored_segment(const Vector3d& p, const Vector3d& x1, const Vector3d& x2, double rc2) {
-    const Vector3d r1 = p - x1, r2 = p - x2, r0 = x2 - x1;
-    const Vector3d c = r1.cross(r2);
-    const double l2 = r0.squaredNorm();
-    const double c2 = c.squaredNorm();
-    if (c2 <= 1e-24 * l2 * l2) return Vector3d::Zero();
-    const double k =
-        r0.dot(r1 / std::sqrt(r1.squaredNorm() + rc2) - r2 / std::sqrt(r2.squaredNorm() + rc2)) /
-        (c2 + l2 * rc2);
-    return (detail::inv_four_pi * k) * c;
-}
-
-/// Velocity at p of a semi-infinite vortex line of unit circulation from x1 to infinity along
-/// the unit vector d, with a core of squared radius rc2 as cored_segment.
-Vector3d cored_semi_infinite(const Vector3d& p, const Vector3d& x1, const Vector3d& d, double rc2) {
-    const Vector3d r1 = p - x1;
-    const Vector3d c = d.cross(r1);
-    const double c2 = c.squaredNorm();
-    const double n1 = r1.norm();
-    if (n1 == 0.0 || c2 <= 1e-24 * n1 * n1) return Vector3d::Zero();
-    return (detail::inv_four_pi * (1.0 + d.dot(r1) / n1) / (c2 + rc2)) * c;
-}
-
-/// Velocity at p (stretched coordinates) of horseshoe j of the lattice (stretched ends), with
-/// the x component returned to physical space (divided by beta). Every horseshoe has trailing
-/// legs along +x, NOWAKE surfaces included: their strips carry zero net circulation (see
-/// SteadySolver), so the legs of a strip cancel behind its last bound vortex. Cores as
-/// SteadyOptions: a small one within the component of the point, a large one across components.
+/// The horseshoes of the lattice in stretched coordinates (ends stretched by 1/beta in x) and
+/// their velocities at a point, the x component returned to physical space (divided by beta).
+/// Each horseshoe is a bound segment a -> b with a finite core of squared radius rc^2 (the
+/// Scully / Burnham-Hallock profile, tangential velocity Gamma r / (2 pi (r^2 + rc^2)) near an
+/// infinite line: the Biot-Savart law with the squared distance from the line and from the end
+/// points each increased by rc^2) and two semi-infinite legs along +x with the same core. Every
+/// horseshoe has trailing legs, NOWAKE surfaces included: their strips carry zero net
+/// circulation (see SteadySolver), so the legs of a strip cancel behind its last bound vortex.
+/// Cores as SteadyOptions: a small one within the component of the point, a large one across
+/// components. Mirror images (Model::y_symmetry, z_symmetry) are added as further horseshoes.
 struct Stretched {
     std::vector<Vector3d> a, b;           // bound ends
     std::vector<int> component;           // component of each horseshoe
@@ -68,93 +49,100 @@ struct Stretched {
     // Images (Model::y_symmetry, z_symmetry): factors and the z of the horizontal plane.
     double fy = 0.0, fz = 0.0, z_plane = 0.0;
 
-    [[nodiscard]] Vector3d at(const Vector3d& p, int comp, std::size_t j) const {
-        const double rc2 = comp == component[j] ? core_in[j] : core_x[j];
-        Vector3d v = horseshoe(p, a[j], b[j], rc2);
-        // A mirror image reverses the sense of the bound segment (image ends swapped), two
-        // mirror images restore it.
-        auto my = [](const Vector3d& q) { return Vector3d(q.x(), -q.y(), q.z()); };
-        auto mz = [&](const Vector3d& q) { return Vector3d(q.x(), q.y(), 2.0 * z_plane - q.z()); };
-        if (fy != 0.0) v += fy * horseshoe(p, my(b[j]), my(a[j]), rc2);
-        if (fz != 0.0) {
-            v += fz * horseshoe(p, mz(b[j]), mz(a[j]), rc2);
-            if (fy != 0.0) v += fy * fz * horseshoe(p, my(mz(a[j])), my(mz(b[j])), rc2);
-        }
-        v.x() /= beta;
-        return v;
-    }
-
-    /// Structure-of-arrays copy of the horseshoes for `row` (built by `prepare_rows`).
-    Eigen::ArrayXd ax, ay, az, bx, by, bz, r0x, r0y, r0z, l2, cin, cx;
+    /// Structure-of-arrays copy of the horseshoes and of their mirror images (`prepare_rows`),
+    /// padded with copies of the last horseshoe to a multiple of 4 (`row` works on groups of 4).
+    struct Set {
+        double factor = 1.0;  // image factor (1 for the lattice itself)
+        Eigen::ArrayXd ax, ay, az, bx, by, bz, r0x, r0y, r0z, l2;
+    };
+    std::vector<Set> sets;
+    Eigen::ArrayXd cin, cx;
     Eigen::ArrayXi comps;
+    Eigen::Index padded = 0;
 
     void prepare_rows() {
         const auto n = static_cast<Eigen::Index>(a.size());
-        for (auto* v : {&ax, &ay, &az, &bx, &by, &bz, &r0x, &r0y, &r0z, &l2, &cin, &cx})
-            v->resize(n);
-        comps.resize(n);
-        for (Eigen::Index j = 0; j < n; ++j) {
-            const auto k = static_cast<std::size_t>(j);
-            ax[j] = a[k].x();
-            ay[j] = a[k].y();
-            az[j] = a[k].z();
-            bx[j] = b[k].x();
-            by[j] = b[k].y();
-            bz[j] = b[k].z();
-            r0x[j] = bx[j] - ax[j];
-            r0y[j] = by[j] - ay[j];
-            r0z[j] = bz[j] - az[j];
-            l2[j] = r0x[j] * r0x[j] + r0y[j] * r0y[j] + r0z[j] * r0z[j];
+        padded = (n + 3) / 4 * 4;
+        // The lattice, then its images: y, z, then both (a mirror image
+        // reverses the sense of the bound segment: ends swapped; two restore it).
+        auto my = [](const Vector3d& q) { return Vector3d(q.x(), -q.y(), q.z()); };
+        auto mz = [&](const Vector3d& q) { return Vector3d(q.x(), q.y(), 2.0 * z_plane - q.z()); };
+        struct Image {
+            double f;
+            std::function<std::pair<Vector3d, Vector3d>(const Vector3d&, const Vector3d&)> ends;
+        };
+        std::vector<Image> images{{1.0, [](const Vector3d& p, const Vector3d& q) {
+                                       return std::pair{p, q};
+                                   }}};
+        if (fy != 0.0)
+            images.push_back({fy, [&](const Vector3d& p, const Vector3d& q) {
+                                  return std::pair{my(q), my(p)};
+                              }});
+        if (fz != 0.0) {
+            images.push_back({fz, [&](const Vector3d& p, const Vector3d& q) {
+                                  return std::pair{mz(q), mz(p)};
+                              }});
+            if (fy != 0.0)
+                images.push_back({fy * fz, [&](const Vector3d& p, const Vector3d& q) {
+                                      return std::pair{my(mz(p)), my(mz(q))};
+                                  }});
+        }
+        sets.clear();
+        for (const Image& im : images) {
+            Set s;
+            s.factor = im.f;
+            for (auto* v :
+                 {&s.ax, &s.ay, &s.az, &s.bx, &s.by, &s.bz, &s.r0x, &s.r0y, &s.r0z, &s.l2})
+                v->resize(padded);
+            for (Eigen::Index j = 0; j < padded; ++j) {
+                const auto k = static_cast<std::size_t>(std::min(j, n - 1));
+                const auto [e1, e2] = im.ends(a[k], b[k]);
+                s.ax[j] = e1.x();
+                s.ay[j] = e1.y();
+                s.az[j] = e1.z();
+                s.bx[j] = e2.x();
+                s.by[j] = e2.y();
+                s.bz[j] = e2.z();
+                s.r0x[j] = s.bx[j] - s.ax[j];
+                s.r0y[j] = s.by[j] - s.ay[j];
+                s.r0z[j] = s.bz[j] - s.az[j];
+                s.l2[j] = s.r0x[j] * s.r0x[j] + s.r0y[j] * s.r0y[j] + s.r0z[j] * s.r0z[j];
+            }
+            sets.push_back(std::move(s));
+        }
+        cin.resize(padded);
+        cx.resize(padded);
+        comps.resize(padded);
+        for (Eigen::Index j = 0; j < padded; ++j) {
+            const auto k = static_cast<std::size_t>(std::min(j, n - 1));
             cin[j] = core_in[k];
             cx[j] = core_x[k];
             comps[j] = component[k];
         }
+        views.clear();
+        for (const Set& t : sets)
+            views.push_back({t.factor, t.ax.data(), t.ay.data(), t.az.data(), t.bx.data(),
+                             t.by.data(), t.bz.data(), t.r0x.data(), t.r0y.data(), t.r0z.data(),
+                             t.l2.data()});
+        view = {views.data(), static_cast<int>(views.size()),
+                cin.data(),   cx.data(),
+                comps.data(), padded,
+                beta};
     }
 
-    /// Velocities at p of every horseshoe at once (the same arithmetic as `at`, as whole-array
-    /// expressions the compiler vectorises); only without images (fy = fz = 0).
+    /// Velocities at p of every horseshoe at once (detail::Kernels::horseshoe_row: four
+    /// horseshoes at a time in vector registers); vx, vy, vz are resized to the padded count
+    /// (the padding's values are meaningless).
     void row(const Vector3d& p, int comp, Eigen::ArrayXd& vx, Eigen::ArrayXd& vy,
              Eigen::ArrayXd& vz) const {
-        using A = Eigen::ArrayXd;
-        const A rc2 = (comps == comp).select(cin, cx);
-        // Bound segment a -> b.
-        const A r1x = p.x() - ax, r1y = p.y() - ay, r1z = p.z() - az;
-        const A r2x = p.x() - bx, r2y = p.y() - by, r2z = p.z() - bz;
-        const A cxx = r1y * r2z - r1z * r2y, cyy = r1z * r2x - r1x * r2z,
-                czz = r1x * r2y - r1y * r2x;
-        const A c2 = cxx.square() + cyy.square() + czz.square();
-        const A s1 = r1x.square() + r1y.square() + r1z.square();
-        const A s2 = r2x.square() + r2y.square() + r2z.square();
-        const A i1 = (s1 + rc2).rsqrt(), i2 = (s2 + rc2).rsqrt();
-        const A dot =
-            r0x * (r1x * i1 - r2x * i2) + r0y * (r1y * i1 - r2y * i2) + r0z * (r1z * i1 - r2z * i2);
-        const A k =
-            (c2 <= 1e-24 * l2.square()).select(0.0, detail::inv_four_pi * dot / (c2 + l2 * rc2));
-        vx = k * cxx;
-        vy = k * cyy;
-        vz = k * czz;
-        // Legs: b -> infinity and infinity -> a along +x; x-hat x r = (0, -r_z, r_y).
-        auto leg = [&](const A& rx, const A& ry, const A& rz, const A& sq, double sign) {
-            const A cc = ry.square() + rz.square();
-            const A nn = sq.sqrt();
-            const A f = (nn == 0.0 || cc <= 1e-24 * sq)
-                            .select(0.0, sign * detail::inv_four_pi * (1.0 + rx / nn) / (cc + rc2));
-            vy -= f * rz;
-            vz += f * ry;
-        };
-        leg(r2x, r2y, r2z, s2, 1.0);
-        leg(r1x, r1y, r1z, s1, -1.0);
-        vx /= beta;
+        vx.resize(padded);
+        vy.resize(padded);
+        vz.resize(padded);
+        detail::kernels().horseshoe_row(view, p.data(), comp, vx.data(), vy.data(), vz.data());
     }
-
-private:
-    /// Horseshoe from infinity (+x) to e1, e1 to e2, e2 to infinity.
-    static Vector3d horseshoe(const Vector3d& p, const Vector3d& e1, const Vector3d& e2,
-                              double rc2) {
-        const Vector3d x = Vector3d::UnitX();
-        return cored_segment(p, e1, e2, rc2) + cored_semi_infinite(p, e2, x, rc2) -
-               cored_semi_infinite(p, e1, x, rc2);
-    }
+    /// Pointers into `sets` for the kernel (set by prepare_rows; the object is not copied after).
+    std::vector<detail::HorseshoeSet> views;
+    detail::HorseshoeRows view;
 };
 
 Vector3d stretch(const Vector3d& p, double beta) {
@@ -195,6 +183,80 @@ int component_of(const Model& m, const Lattice& L, std::size_t i) {
 
 }  // namespace
 
+/// The horseshoes in the solver's arrays (built once; `induced_at_bound` reuses them).
+struct SteadySolver::Kernel {
+    Stretched st;
+};
+
+/// Mirror symmetry about y = 0 (see the constructor): the orbits of the reflection and the two
+/// half systems.
+struct SteadySolver::Mirror {
+    std::vector<int> image;           ///< m(i): the panel whose horseshoe is panel i's mirror image
+    std::vector<double> sign;         ///< s_i: reflected horseshoe i = s_i x horseshoe m(i)
+    std::vector<int> rep;             ///< one panel per orbit (i <= m(i)), increasing
+    std::vector<int> sym, anti;       ///< representatives that are unknowns of each half system
+    detail::DenseLU lu_sym, lu_anti;  ///< the half systems, factorised
+};
+
+namespace {
+
+/// Reflection about y = 0.
+Vector3d reflect_y(const Vector3d& q) {
+    return {q.x(), -q.y(), q.z()};
+}
+
+/// The mirror map of a lattice, if it is exactly symmetric about y = 0 (every test is an exact
+/// floating-point equality: build_lattice makes mirror copies by negating y). Panel i and its
+/// image m(i) must have reflected, reversed bound segments (a_m = S b_i, b_m = S a_i, sign +1), or
+/// panel i lies in the plane y = 0 (S a_i = a_i, S b_i = b_i: it is its own image reversed, sign
+/// -1); reflected control points, force points and normals (n_m = s_i S n_i); equal components,
+/// cores and NOWAKE closure rows (closure strips mapped onto closure strips with one sign).
+bool find_mirror(const Model& model, const Lattice& L, const Stretched& st,
+                 const std::vector<char>& closure, std::vector<int>& image,
+                 std::vector<double>& sign) {
+    if (model.y_symmetry != 0) return false;  // a half lattice with images
+    const auto n = static_cast<std::size_t>(L.size());
+    std::map<std::array<double, 6>, int> by_ends;
+    for (std::size_t i = 0; i < n; ++i)
+        by_ends.emplace(std::array<double, 6>{L.a[i].x(), L.a[i].y(), L.a[i].z(), L.b[i].x(),
+                                              L.b[i].y(), L.b[i].z()},
+                        static_cast<int>(i));
+    image.assign(n, -1);
+    sign.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vector3d sa = reflect_y(L.a[i]), sb = reflect_y(L.b[i]);
+        if (sa == L.a[i] && sb == L.b[i]) {
+            image[i] = static_cast<int>(i);
+            sign[i] = -1.0;
+        } else {
+            const auto it = by_ends.find({sb.x(), sb.y(), sb.z(), sa.x(), sa.y(), sa.z()});
+            if (it == by_ends.end()) return false;
+            image[i] = it->second;
+            sign[i] = 1.0;
+        }
+        const auto j = static_cast<std::size_t>(image[i]);
+        if (L.control_point[j] != reflect_y(L.control_point[i]) ||
+            L.bound_point[j] != reflect_y(L.bound_point[i]) ||
+            L.normal[j] != sign[i] * reflect_y(L.normal[i]) || st.component[j] != st.component[i] ||
+            st.core_in[j] != st.core_in[i] || st.core_x[j] != st.core_x[i] ||
+            closure[j] != closure[i])
+            return false;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!closure[i]) continue;
+        const Strip& S = L.strips[static_cast<std::size_t>(L.strip[i])];
+        const int target = L.strip[static_cast<std::size_t>(image[i])];
+        for (int k = S.first_panel; k < S.first_panel + S.n_panels; ++k) {
+            const auto kk = static_cast<std::size_t>(k);
+            if (L.strip[static_cast<std::size_t>(image[kk])] != target || sign[kk] != sign[i])
+                return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
 struct SteadySolver::Units {
     MatrixXd G;  // N x K circulations
     MatrixXd U;  // 3N x K induced velocity at bound midpoints
@@ -227,11 +289,10 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
     check_lattice(model_, lattice_);
     beta_pg_ = std::sqrt(1.0 - mach * mach);
     const int n = lattice_.size();
-    Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
-    // Without symmetry images every influence row is one vectorised pass over the horseshoes.
-    const bool vectorised = model_.y_symmetry == 0 && model_.z_symmetry == 0;
-    if (vectorised) st.prepare_rows();
-    Eigen::ArrayXd vx, vy, vz;
+    auto kernel = std::make_shared<Kernel>();
+    kernel->st = make_stretched(model_, lattice_, beta_pg_, options_);
+    Stretched& st = kernel->st;
+    st.prepare_rows();
     // Rows: flow tangency at every control point, except the last control point of each strip
     // of a surface that sheds no wake (NOWAKE), whose row states instead that the strip's
     // circulations sum to zero: such a surface (e.g. a fuselage side plate) carries lift through
@@ -240,28 +301,81 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
     for (const Strip& S : lattice_.strips)
         if (!S.sheds_wake)
             closure_row_[static_cast<std::size_t>(S.first_panel + S.n_panels - 1)] = 1;
-    // Assembled transposed (row i of the influence matrix is column i here: contiguous writes).
-    MatrixXd At(n, n);
-    for (int i = 0; i < n; ++i) {
+    Eigen::ArrayXd vx, vy, vz, vals(n);
+    // Row i of the influence matrix: normal velocity at control point i of every horseshoe.
+    auto influence_row = [&](int i) {
         const auto ii = static_cast<std::size_t>(i);
         if (closure_row_[ii]) {
             const Strip& S = lattice_.strips[static_cast<std::size_t>(lattice_.strip[ii])];
-            At.col(i).setZero();
-            At.col(i).segment(S.first_panel, S.n_panels).setOnes();
-            continue;
+            vals.setZero();
+            vals.segment(S.first_panel, S.n_panels).setOnes();
+            return;
         }
         const Vector3d p = stretch(lattice_.control_point[ii], beta_pg_);
         const Vector3d& nrm = lattice_.normal[ii];
-        const int comp = component_of(model_, lattice_, ii);
-        if (vectorised) {
-            st.row(p, comp, vx, vy, vz);
-            At.col(i) = (vx * nrm.x() + vy * nrm.y() + vz * nrm.z()).matrix();
-        } else {
-            for (int j = 0; j < n; ++j)
-                At(j, i) = st.at(p, comp, static_cast<std::size_t>(j)).dot(nrm);
+        st.row(p, component_of(model_, lattice_, ii), vx, vy, vz);
+        vals = vx.head(n) * nrm.x() + vy.head(n) * nrm.y() + vz.head(n) * nrm.z();
+    };
+    auto mirror = std::make_shared<Mirror>();
+    if (find_mirror(model_, lattice_, st, closure_row_, mirror->image, mirror->sign)) {
+        // Mirror symmetry (the image m(i) and sign s_i of every panel: the influence matrix
+        // satisfies A(m(i), m(j)) = s_i s_j A(i, j)). Circulations symmetric (G_m(j) = s_j G_j)
+        // and antisymmetric (G_m(j) = -s_j G_j) solve two independent systems of half the size,
+        // one row and one unknown per orbit {j, m(j)}: A(i, j) +- s_j A(i, m(j)). A panel in the
+        // plane y = 0 (sign -1) is an unknown of the antisymmetric system only.
+        Mirror& M = *mirror;
+        std::vector<int> pos_sym(static_cast<std::size_t>(n), -1),
+            pos_anti(static_cast<std::size_t>(n), -1);
+        for (int i = 0; i < n; ++i) {
+            const auto ii = static_cast<std::size_t>(i);
+            const int m = M.image[ii];
+            if (m < i) continue;
+            M.rep.push_back(i);
+            if (m != i || M.sign[ii] > 0) {
+                pos_sym[ii] = static_cast<int>(M.sym.size());
+                M.sym.push_back(i);
+            }
+            if (m != i || M.sign[ii] < 0) {
+                pos_anti[ii] = static_cast<int>(M.anti.size());
+                M.anti.push_back(i);
+            }
         }
+        const auto ns = static_cast<Eigen::Index>(M.sym.size());
+        const auto na = static_cast<Eigen::Index>(M.anti.size());
+        MatrixXd As(ns, ns), Aa(na, na);
+        for (const int i : M.rep) {
+            influence_row(i);
+            const auto ii = static_cast<std::size_t>(i);
+            if (const int r = pos_sym[ii]; r >= 0)
+                for (Eigen::Index c = 0; c < ns; ++c) {
+                    const auto j = static_cast<std::size_t>(M.sym[static_cast<std::size_t>(c)]);
+                    const int mj = M.image[j];
+                    As(r, c) = vals[static_cast<Eigen::Index>(j)] +
+                               (mj != static_cast<int>(j) ? M.sign[j] * vals[mj] : 0.0);
+                }
+            if (const int r = pos_anti[ii]; r >= 0)
+                for (Eigen::Index c = 0; c < na; ++c) {
+                    const auto j = static_cast<std::size_t>(M.anti[static_cast<std::size_t>(c)]);
+                    const int mj = M.image[j];
+                    Aa(r, c) = vals[static_cast<Eigen::Index>(j)] -
+                               (mj != static_cast<int>(j) ? M.sign[j] * vals[mj] : 0.0);
+                }
+        }
+        M.lu_sym.compute(std::move(As));
+        M.lu_anti.compute(std::move(Aa));
+        mirror_ = std::move(mirror);
+    } else {
+        // Assembled transposed (row i of the influence matrix is column i here: contiguous
+        // writes).
+        MatrixXd At(n, n);
+        for (int i = 0; i < n; ++i) {
+            influence_row(i);
+            At.col(i) = vals.matrix();
+        }
+        At.transposeInPlace();
+        lu_.compute(std::move(At));
     }
-    lu_.compute(At.transpose());
+    kernel_ = std::move(kernel);
     mid_ = lattice_.bound_point;
     // Trefftz plane: the wake of strip t is a pair of infinite 2-D vortices at its edges (the
     // trailing legs far downstream); wash at the centre of strip s per unit circulation of t.
@@ -324,39 +438,87 @@ VectorXd SteadySolver::rhs(const VectorXd& deflection, const Vector3d& v, const 
     return b;
 }
 
+MatrixXd SteadySolver::solve_system(const MatrixXd& B) const {
+    if (!mirror_) return lu_.solve(B);
+    // Split every right-hand side into its symmetric and antisymmetric parts (rows of the orbit
+    // representatives), solve the half systems, and assemble the circulations of both halves.
+    const Mirror& M = *mirror_;
+    const auto K = B.cols();
+    auto part = [&](const std::vector<int>& rows, double f) {
+        MatrixXd P(static_cast<Eigen::Index>(rows.size()), K);
+        for (std::size_t r = 0; r < rows.size(); ++r) {
+            const auto i = static_cast<std::size_t>(rows[r]);
+            const auto ri = static_cast<Eigen::Index>(r);
+            P.row(ri) = 0.5 * (B.row(rows[r]) + (f * M.sign[i]) * B.row(M.image[i]));
+        }
+        return P;
+    };
+    const MatrixXd Xs = M.lu_sym.solve(part(M.sym, 1.0));
+    const MatrixXd Xa = M.lu_anti.solve(part(M.anti, -1.0));
+    MatrixXd G = MatrixXd::Zero(B.rows(), K);
+    auto add = [&](const std::vector<int>& rows, const MatrixXd& X, double f) {
+        for (std::size_t r = 0; r < rows.size(); ++r) {
+            const auto i = static_cast<std::size_t>(rows[r]);
+            const auto ri = static_cast<Eigen::Index>(r);
+            G.row(rows[r]) += X.row(ri);
+            if (M.image[i] != rows[r]) G.row(M.image[i]) += (f * M.sign[i]) * X.row(ri);
+        }
+    };
+    add(M.sym, Xs, 1.0);
+    add(M.anti, Xa, -1.0);
+    return G;
+}
+
 MatrixXd SteadySolver::induced_at_bound(const MatrixXd& gamma) const {
     const int n = lattice_.size();
     const auto K = gamma.cols();
-    Stretched st = make_stretched(model_, lattice_, beta_pg_, options_);
+    const Stretched& st = kernel_->st;
     MatrixXd U = MatrixXd::Zero(3 * n, K);
-    const bool vectorised = model_.y_symmetry == 0 && model_.z_symmetry == 0;
-    if (vectorised) {
-        // Per target point: the velocities of all horseshoes in one pass, then one small
-        // matrix product with the circulations.
-        st.prepare_rows();
-        Eigen::ArrayXd vx, vy, vz;
-        Eigen::Matrix<double, 3, Eigen::Dynamic> rows(3, n);
-        for (int i = 0; i < n; ++i) {
+    // Per target point: the velocities of all horseshoes in one pass, then one small matrix
+    // product with the circulations. With mirror symmetry only one point of each orbit: the
+    // velocity at the image S p of point p is S sum_k s_k G_m(k) v_k(p).
+    MatrixXd GG = gamma;
+    if (mirror_) {
+        GG.resize(n, 2 * K);
+        GG.leftCols(K) = gamma;
+        for (int k = 0; k < n; ++k) {
+            const auto kk = static_cast<std::size_t>(k);
+            GG.row(k).tail(K) = mirror_->sign[kk] * gamma.row(mirror_->image[kk]);
+        }
+    }
+    // Points in blocks of `bp`: their velocity rows stacked (3 bp x N), one product per block.
+    const std::vector<int>* reps = mirror_ ? &mirror_->rep : nullptr;
+    const auto np = static_cast<Eigen::Index>(reps ? reps->size() : static_cast<std::size_t>(n));
+    constexpr Eigen::Index bp = 16;
+    Eigen::ArrayXd vx, vy, vz;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(3 * bp, n);
+    MatrixXd T;
+    for (Eigen::Index q0 = 0; q0 < np; q0 += bp) {
+        const Eigen::Index m = std::min(bp, np - q0);
+        auto point = [&](Eigen::Index q) {
+            return reps ? (*reps)[static_cast<std::size_t>(q0 + q)] : static_cast<int>(q0 + q);
+        };
+        for (Eigen::Index q = 0; q < m; ++q) {
+            const int i = point(q);
             const Vector3d p = stretch(mid_[static_cast<std::size_t>(i)], beta_pg_);
             st.row(p, component_of(model_, lattice_, static_cast<std::size_t>(i)), vx, vy, vz);
-            rows.row(0) = vx.matrix().transpose();
-            rows.row(1) = vy.matrix().transpose();
-            rows.row(2) = vz.matrix().transpose();
-            U.middleRows(3 * i, 3).noalias() = rows * gamma;
+            rows.row(3 * q) = vx.head(n).matrix().transpose();
+            rows.row(3 * q + 1) = vy.head(n).matrix().transpose();
+            rows.row(3 * q + 2) = vz.head(n).matrix().transpose();
         }
-        return U;
-    }
-    const MatrixXd gt = gamma.transpose();  // K x N: column j holds horseshoe j's strengths
-    for (int i = 0; i < n; ++i) {
-        const Vector3d p = stretch(mid_[static_cast<std::size_t>(i)], beta_pg_);
-        const int comp = component_of(model_, lattice_, static_cast<std::size_t>(i));
-        Eigen::Matrix<double, 3, Eigen::Dynamic> acc =
-            Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, K);
-        for (int j = 0; j < n; ++j) {
-            const Vector3d v = st.at(p, comp, static_cast<std::size_t>(j));
-            acc.noalias() += v * gt.col(j).transpose();
+        // T = rows * GG; the row-major rows are the column-major (N x 3 bp) rows^T.
+        T.resize(3 * m, GG.cols());
+        detail::kernels().gemm_tn(rows.data(), n, 3 * m, GG.data(), GG.cols(), T.data());
+        for (Eigen::Index q = 0; q < m; ++q) {
+            const int i = point(q);
+            U.middleRows(3 * i, 3) = T.middleRows(3 * q, 3).leftCols(K);
+            if (!reps) continue;
+            const int mi = mirror_->image[static_cast<std::size_t>(i)];
+            if (mi == i) continue;
+            U.row(3 * mi) = T.row(3 * q).tail(K);
+            U.row(3 * mi + 1) = -T.row(3 * q + 1).tail(K);
+            U.row(3 * mi + 2) = T.row(3 * q + 2).tail(K);
         }
-        U.middleRows(3 * i, 3) = acc;
     }
     return U;
 }
@@ -369,7 +531,7 @@ SteadySolver::Units SteadySolver::units(const VectorXd& deflection) const {
         B.col(k + 3) = rhs(deflection, Vector3d::Zero(), Vector3d::Unit(k));
     }
     Units u;
-    u.G = lu_.solve(B);
+    u.G = solve_system(B);
     u.U = induced_at_bound(u.G);
     return u;
 }
@@ -384,7 +546,7 @@ MatrixXd SteadySolver::unit_circulations(const VectorXd& deflection) const {
         B.col(k) = rhs(d, Vector3d::Unit(k), Vector3d::Zero());
         B.col(k + 3) = rhs(d, Vector3d::Zero(), Vector3d::Unit(k));
     }
-    return lu_.solve(B);
+    return solve_system(B);
 }
 
 namespace {
@@ -541,7 +703,7 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
         d1[k] += 1.0;
         B.col(6 + k) = rhs(d1, V, w) - b0;
     }
-    const MatrixXd G_all = lu_.solve(B);
+    const MatrixXd G_all = solve_system(B);
     const MatrixXd U_all = induced_at_bound(G_all);
     Units u;
     u.G = G_all.leftCols(6);

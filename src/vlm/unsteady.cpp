@@ -41,6 +41,8 @@
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
 #include "manta/vlm/detail/biot_savart.hpp"
+#include "manta/vlm/detail/dense_lu.hpp"
+#include "manta/vlm/detail/kernels.hpp"
 
 namespace manta::vlm {
 
@@ -108,6 +110,11 @@ struct Scratch {
 
 /// Grid points per block of the kernel (a few tens of kilobytes of scratch: cache-resident).
 constexpr Index block_points = 1024;
+
+/// Largest lattice-on-lattice influence kept for the loads (UnsteadySolver::Impl::
+/// build_lattice_influence): 3 (N + chordwise segments) x N doubles, about 190 MB for the
+/// 2 000-panel Ranger lattice; beyond it the loads sum the kernel every step.
+constexpr double lattice_matrix_bytes = 512.0e6;
 
 /// A structured grid of vortex rings (see the file comment). Coordinates are stretched.
 struct Grid {
@@ -232,37 +239,17 @@ struct Accumulator {
 
 void segment_family(const Scratch& s, Index m, Index step, const double* S, const double* K,
                     double tiny, Accumulator& a) {
-    using A4 = Eigen::Array4d;
-    using M4 = Eigen::Map<const A4>;
-    const double *rx = s.rx.data(), *ry = s.ry.data(), *rz = s.rz.data();
-    const double *rn = s.rn.data(), *ri = s.ri.data();
-    Index j = 0;
-    for (; j + 4 <= m; j += 4) {
-        const Index i = j + step;
-        const A4 r1x = M4(rx + j), r1y = M4(ry + j), r1z = M4(rz + j);
-        const A4 r2x = M4(rx + i), r2y = M4(ry + i), r2z = M4(rz + i);
-        const A4 cx = r1y * r2z - r1z * r2y;
-        const A4 cy = r1z * r2x - r1x * r2z;
-        const A4 cz = r1x * r2y - r1y * r2x;
-        const A4 num = (M4(ri + j) + M4(ri + i)) *
-                       (M4(rn + j) * M4(rn + i) - (r1x * r2x + r1y * r2y + r1z * r2z));
-        const A4 k = M4(S + j) * num / (cx * cx + cy * cy + cz * cz + M4(K + j) + tiny);
-        a.x += k * cx;
-        a.y += k * cy;
-        a.z += k * cz;
-    }
-    for (; j < m; ++j) {
-        const Index i = j + step;
-        const double cx = ry[j] * rz[i] - rz[j] * ry[i];
-        const double cy = rz[j] * rx[i] - rx[j] * rz[i];
-        const double cz = rx[j] * ry[i] - ry[j] * rx[i];
-        const double num =
-            (ri[j] + ri[i]) * (rn[j] * rn[i] - (rx[j] * rx[i] + ry[j] * ry[i] + rz[j] * rz[i]));
-        const double k = S[j] * num / (cx * cx + cy * cy + cz * cz + K[j] + tiny);
-        a.x[0] += k * cx;
-        a.y[0] += k * cy;
-        a.z[0] += k * cz;
-    }
+    // detail::Kernels::segment_family: four segments at a time (two SSE2 or one AVX2 vector).
+    double acc[12];
+    Eigen::Map<Eigen::Array4d> head(acc);
+    head = a.x;
+    Eigen::Map<Eigen::Array4d>(acc + 4) = a.y;
+    Eigen::Map<Eigen::Array4d>(acc + 8) = a.z;
+    detail::kernels().segment_family(s.rx.data(), s.ry.data(), s.rz.data(), s.rn.data(),
+                                     s.ri.data(), m, step, S, K, tiny, acc);
+    a.x = Eigen::Map<const Eigen::Array4d>(acc);
+    a.y = Eigen::Map<const Eigen::Array4d>(acc + 4);
+    a.z = Eigen::Map<const Eigen::Array4d>(acc + 8);
 }
 
 /// Velocity at p (stretched coordinates, no 1/beta on x yet) induced by the segments of a grid
@@ -281,12 +268,9 @@ Vector3d grid_velocity(const Grid& g, const Vector3d& p, int cls, double tiny, S
     for (Index r0 = row_begin; r0 < re; r0 += B) {
         const Index rp = std::min<Index>(B + 1, R - r0);  // point rows in the block
         const Index np = rp * C, off = r0 * C;
-        auto rx = s.rx.head(np), ry = s.ry.head(np), rz = s.rz.head(np);
-        rx = p.x() - g.x.segment(off, np);
-        ry = p.y() - g.y.segment(off, np);
-        rz = p.z() - g.z.segment(off, np);
-        s.rn.head(np) = (rx.square() + ry.square() + rz.square() + eps2).sqrt();
-        s.ri.head(np) = s.rn.head(np).inverse();
+        detail::kernels().grid_points(g.x.data() + off, g.y.data() + off, g.z.data() + off, np,
+                                      p.data(), eps2, s.rx.data(), s.ry.data(), s.rz.data(),
+                                      s.rn.data(), s.ri.data());
         // Spanwise segments on the block's rows (the last grid point starts none).
         const Index rs = std::min<Index>(B, re - r0);
         Index m = rs * C;
@@ -467,7 +451,7 @@ struct UnsteadySolver::Impl {
     std::vector<ArrayXd> wake_core, wake_core_left;
     bool split_sides = false;
     MatrixXd A;  // influence of unit ring circulations on the control points' normal velocity
-    Eigen::PartialPivLU<MatrixXd> lu;
+    detail::DenseLU lu;
 
     // Lattice geometry (physical, geometry axes) and its stretched evaluation points.
     std::vector<LatticeGrid> grids;
@@ -497,7 +481,12 @@ struct UnsteadySolver::Impl {
         double w0 = 1.0, w1 = 0.0;
     };
     std::vector<Interpolation> bound_from_cp;  // bound point from its strip's control points
-    Index near_rows = 0;                       // wake point rows summed exactly at bound points
+    /// Velocity induced by the lattice's rings at the load points (bound points, then chordwise
+    /// segment midpoints) per unit ring circulation, transposed: column 3q + d is component d
+    /// at load point q. The lattice is rigid in geometry axes, so this is built once per shed
+    /// distance; empty when it would exceed lattice_matrix_bytes (the kernel sums then).
+    MatrixXd lattice_influence_t;
+    Index near_rows = 0;  // wake point rows summed exactly at bound points
 
     // Run state.
     bool started = false;
@@ -516,6 +505,7 @@ struct UnsteadySolver::Impl {
     void build_geometry();
     void set_shed(double distance);
     void assemble();
+    void build_lattice_influence();
     void pose_at(double t, Pose& p) const;
     [[nodiscard]] Vector3d to_air(const Pose& p, const Vector3d& g) const;
     void wake_to_geometry(const Pose& p);
@@ -915,7 +905,63 @@ void UnsteadySolver::Impl::assemble() {
             A.row(i).setZero();
             A(i, i) = 1.0;
         }
-    lu.compute(A);
+    lu.compute(A);  // a copy: A is kept for the steady start
+}
+
+void UnsteadySolver::Impl::build_lattice_influence() {
+    // The sums of `induced(p, cls, true, ...)` (every lattice grid segment, images, x / beta)
+    // written per ring: a spanwise segment (k, e) -> (k, e+1) carries ring(k, e) - ring(k-1, e),
+    // a chordwise one (k, e) -> (k+1, e) ring(k, e-1) - ring(k, e), each with the cores the grid
+    // kernel gives it (Grid: the column's core, or each side its own strip's with split sides).
+    const Index M = N + static_cast<Index>(chord.size());
+    const double bytes = 3.0 * static_cast<double>(M) * N * sizeof(double);
+    if (bytes > lattice_matrix_bytes) {
+        lattice_influence_t.resize(0, 0);
+        return;
+    }
+    lattice_influence_t.setZero(N, 3 * M);
+    parallel(M, [this](Index b, Index e, Scratch&) {
+        for (Index q = b; q < e; ++q) {
+            const auto qq = static_cast<std::size_t>(q < N ? q : q - N);
+            const Vector3d& x = q < N ? mid[qq] : chord[qq].mid;
+            const auto cls = static_cast<std::size_t>(q < N ? panel_class[qq] : chord[qq].cls);
+            auto col = lattice_influence_t.middleCols(3 * q, 3);
+            for (std::size_t im = 0; im <= images.size(); ++im) {
+                const Image mirror = im == 0 ? Image{1.0, false, false} : images[im - 1];
+                const Vector3d p = stretch(reflect_point(x, mirror), beta);
+                auto seg = [&](const Vector3d& x1, const Vector3d& x2, double core2) {
+                    Vector3d v = cored_segment(p, x1, x2, core2, tiny);
+                    v.x() /= beta;
+                    return Vector3d(mirror.f * reflect_vector(v, mirror));
+                };
+                for (const LatticeGrid& G : grids) {
+                    const Grid& g = G.g;
+                    const Index C = g.cols;
+                    auto add = [&](Index k, Index c, const Vector3d& v) {
+                        if (k < 0 || k >= G.n_chord || c < 0 || c >= C) return;
+                        const int j = G.panel[static_cast<std::size_t>(k * C + c)];
+                        if (j >= 0) col.row(j) += v.transpose();
+                    };
+                    for (Index k = 0; k <= G.n_chord; ++k)
+                        for (Index c = 0; c < C; ++c) {
+                            const Index j = k * C + c;
+                            if (c + 1 < C) {
+                                const Vector3d v = seg(g.point(j), g.point(j + 1), g.core[cls][c]);
+                                add(k, c, v);
+                                add(k - 1, c, -v);
+                            }
+                            if (k < G.n_chord) {
+                                const Vector3d v = seg(g.point(j), g.point(j + C), g.core[cls][c]);
+                                add(k, c, -v);
+                                add(k, c - 1,
+                                    g.split ? seg(g.point(j), g.point(j + C), g.core_left[cls][c])
+                                            : v);
+                            }
+                        }
+                }
+            }
+        }
+    });
 }
 
 void UnsteadySolver::Impl::pose_at(double t, Pose& p) const {
@@ -1130,7 +1176,9 @@ void UnsteadySolver::Impl::start_steady() {
             }
         }
     }
-    gamma = Eigen::PartialPivLU<MatrixXd>(M).solve(rhs);
+    detail::DenseLU steady_lu;
+    steady_lu.compute(std::move(M));
+    gamma = steady_lu.solve(rhs);
     // The wake itself.
     const Vector3d step_air = planar ? Vector3d(dt * speed * Vector3d::UnitX())
                                      : Vector3d(pose.C.transpose() * (D * (dt * pose.vinf)));
@@ -1153,15 +1201,24 @@ void UnsteadySolver::Impl::start_steady() {
 
 void UnsteadySolver::Impl::loads() {
     // Kutta-Joukowski on every lattice segment with its local velocity, plus rho dG/dt A n.
-    lattice_strengths(gamma);
-    parallel(N + static_cast<Index>(chord.size()), [this](Index b, Index e, Scratch& s) {
-        for (Index i = b; i < e; ++i) {
-            const auto ii = static_cast<std::size_t>(i < N ? i : i - N);
-            const Vector3d& p = i < N ? mid[ii] : chord[ii].mid;
-            const int cls = i < N ? panel_class[ii] : chord[ii].cls;
-            v_lattice.col(i) = induced(p, cls, true, s);
-        }
-    });
+    const Index n_load = N + static_cast<Index>(chord.size());
+    if (lattice_influence_t.size() > 0) {
+        // Rigid lattice: one product with the influence built at `start`.
+        parallel(n_load, [this](Index b, Index e, Scratch&) {
+            Eigen::Map<VectorXd> v(v_lattice.data() + 3 * b, 3 * (e - b));
+            v.noalias() = lattice_influence_t.middleCols(3 * b, 3 * (e - b)).transpose() * gamma;
+        });
+    } else {
+        lattice_strengths(gamma);
+        parallel(n_load, [this](Index b, Index e, Scratch& s) {
+            for (Index i = b; i < e; ++i) {
+                const auto ii = static_cast<std::size_t>(i < N ? i : i - N);
+                const Vector3d& p = i < N ? mid[ii] : chord[ii].mid;
+                const int cls = i < N ? panel_class[ii] : chord[ii].cls;
+                v_lattice.col(i) = induced(p, cls, true, s);
+            }
+        });
+    }
     const Vector3d& ref = model.reference.point;
     Vector3d F_kj = Vector3d::Zero(), M_kj = Vector3d::Zero();
     Vector3d F_t = Vector3d::Zero(), M_t = Vector3d::Zero();
@@ -1319,6 +1376,7 @@ const UnsteadyStep& UnsteadySolver::start(const aero::Motion& motion) {
     if (shed != m.shed_distance) {
         m.set_shed(shed);
         m.assemble();
+        m.build_lattice_influence();
     }
     // Control modes -> lattice controls.
     m.mode_control.assign(motion.mode_names.size(), -1);

@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "manta/aero/types.hpp"
+#include "manta/vlm/detail/dense_lu.hpp"
 #include "manta/vlm/lattice.hpp"
 #include "manta/vlm/model.hpp"
 
@@ -137,11 +138,16 @@ public:
 
 private:
     struct Units;
+    struct Kernel;  // the horseshoes in structure-of-arrays form
+    struct Mirror;  // mirror symmetry: the two half systems
     [[nodiscard]] Units units(const Eigen::VectorXd& deflection) const;
     [[nodiscard]] SteadyResult loads(const Units& u, const FlowState& s, bool with_detail) const;
     [[nodiscard]] SteadyResult loads_from(const Eigen::VectorXd& g, const Eigen::VectorXd& vind,
                                           const FlowState& s, bool with_detail) const;
     [[nodiscard]] Eigen::MatrixXd induced_at_bound(const Eigen::MatrixXd& gamma) const;
+    /// Circulations for the right-hand sides B (N x K): the full factorisation, or the two half
+    /// systems of a mirror-symmetric lattice.
+    [[nodiscard]] Eigen::MatrixXd solve_system(const Eigen::MatrixXd& B) const;
     [[nodiscard]] Eigen::VectorXd rhs(const Eigen::VectorXd& deflection, const Eigen::Vector3d& v,
                                       const Eigen::Vector3d& w) const;
 
@@ -150,7 +156,9 @@ private:
     double mach_ = 0.0;
     SteadyOptions options_;
     double beta_pg_ = 1.0;
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+    detail::DenseLU lu_;  // the whole system (no mirror symmetry)
+    std::shared_ptr<const Kernel> kernel_;
+    std::shared_ptr<const Mirror> mirror_;  // null: no mirror symmetry
     // Trefftz plane: normal wash at strip centres per unit strip circulation.
     Eigen::MatrixXd trefftz_;
     std::vector<Eigen::Vector3d> mid_;  // force points on the bound segments (Lattice::bound_point)
