@@ -348,7 +348,8 @@ void add_tables(CLI::App& app, Action& action) {
     auto* cmd = app.add_subcommand(
         "tables",
         "Generate aerodynamic tables (static, control increments, dynamic derivatives) from an\n"
-        "aero source by adaptive sampling, Kriging and Co-Kriging; every sample is kept in a\n"
+        "aero source by adaptive sampling and Kriging, control increments fused with the static\n"
+        "model (recursive co-Kriging form); every sample is kept in a\n"
         "resumable SQLite store (docs/tables.md).");
     auto a = std::make_shared<TablesArgs>();
     cmd->add_option("--campaign", a->campaign, "Campaign file (YAML, docs/formats.md)")

@@ -1,6 +1,7 @@
 /// @file generator.cpp
 /// Campaign execution: scheduling through the store, concurrent evaluation, Kriging of the
-/// static table with adaptive infill, Co-Kriging of the control increments, central differences
+/// static table with adaptive infill, control increments fused with the static model (Kriging of
+/// dC / delta with the static slope as regressor, adaptive infill), central differences
 /// of the dynamic derivatives. docs/tables.md explains every choice.
 
 #include "manta/tables/generator.hpp"
@@ -376,31 +377,23 @@ std::array<Prediction, 6> StaticModel::predict(double alpha, double mach, double
 struct ControlModel::Impl {
     aero::Axis control = aero::Axis::elevator;
     Box3 box;
-    /// Fused model per coefficient (empty: the deflected data were constant, `constant`).
-    std::array<std::optional<surrogate::CoKriging>, 6> fused;
-    /// Plain Kriging where the static level carries no information (rho = 0).
-    std::array<std::optional<surrogate::Kriging>, 6> plain;
+    /// Kriging of the increment per unit deflection g = dC / delta per coefficient (empty: g was
+    /// constant over the samples, `constant`).
+    std::array<std::optional<surrogate::Kriging>, 6> ratio;
     std::array<double, 6> constant{};
-    std::array<double, 6> rho{};
-
-    [[nodiscard]] Prediction fused_at(int j, double alpha, double mach, double delta) const {
-        const auto sj = static_cast<std::size_t>(j);
-        if (fused[sj]) return fused[sj]->predict_with_mse(box.unit(alpha, mach, delta));
-        if (plain[sj]) return plain[sj]->predict_with_mse(box.unit(alpha, mach, delta));
-        return {constant[sj], 0.0};
-    }
 };
 
 std::array<Prediction, 6> ControlModel::increment(double alpha, double mach, double delta) const {
     std::array<Prediction, 6> out;
-    for (int j = 0; j < 6; ++j) {
-        if (delta == 0.0) {
-            out[static_cast<std::size_t>(j)] = {0.0, 0.0};
-            continue;
+    if (delta == 0.0) return out;  // exactly zero, with zero MSE
+    const Vector x = impl_->box.unit(alpha, mach, delta);
+    for (std::size_t j = 0; j < 6; ++j) {
+        if (impl_->ratio[j]) {
+            const Prediction g = impl_->ratio[j]->predict_with_mse(x);
+            out[j] = {delta * g.mean, delta * delta * g.mse};
+        } else {
+            out[j] = {delta * impl_->constant[j], 0.0};
         }
-        const Prediction at = impl_->fused_at(j, alpha, mach, delta);
-        const Prediction zero = impl_->fused_at(j, alpha, mach, 0.0);
-        out[static_cast<std::size_t>(j)] = {at.mean - zero.mean, at.mse};
     }
     return out;
 }
@@ -620,8 +613,37 @@ TableWithSigma run_static(Runner& run, int batch, ScenarioReport& report,
     return t;
 }
 
-/// Scenario 2: the increment table of one control by Co-Kriging on the static model.
-TableWithSigma run_control(Runner& run, const ControlPlan& plan,
+/// Smallest correlation parameter of the control models (inputs on the unit cube): with about
+/// 12 samples the likelihood can otherwise drift to theta -> 0 (a flat, nearly polynomial model
+/// whose MSE says nothing); 0.1 is a correlation length of about 2.2 box widths.
+constexpr double control_theta_min = 0.1;
+
+/// Size of the initial Latin hypercube of a control scenario; the rest of the budget is chosen
+/// by maximum increment MSE.
+constexpr int control_initial_size = 7;
+
+/// The static model's derivative of coefficient `j` at beta = 0 that scales a control's effect:
+/// d/dalpha for a coefficient that varies with alpha at beta = 0 (longitudinal), d/dbeta for one
+/// that does not (lateral: zero at beta = 0 by symmetry). Central differences of the Kriging.
+struct StaticSlope {
+    std::shared_ptr<const StaticModel> model;
+    std::size_t j = 0;
+    bool beta = false;
+    static constexpr double h = 1e-3;  ///< [rad]
+    [[nodiscard]] double operator()(double alpha, double mach) const {
+        if (beta)
+            return (model->predict(alpha, mach, h)[j].mean -
+                    model->predict(alpha, mach, -h)[j].mean) /
+                   (2 * h);
+        return (model->predict(alpha + h, mach, 0.0)[j].mean -
+                model->predict(alpha - h, mach, 0.0)[j].mean) /
+               (2 * h);
+    }
+};
+
+/// Scenario 2: the increment table of one control, dC = delta * g(alpha, M, delta), g a Kriging
+/// of (C_sample - C_static(alpha, M, 0)) / delta with the static slope as a regressor.
+TableWithSigma run_control(Runner& run, const ControlPlan& plan, int batch,
                            const std::shared_ptr<const StaticModel>& static_model,
                            ScenarioReport& report, std::shared_ptr<const ControlModel>& model_out) {
     const std::string name(aero::to_string(plan.control));
@@ -630,82 +652,175 @@ TableWithSigma run_control(Runner& run, const ControlPlan& plan,
     SampleStore& store = run.store_;
     if (run.options_.retry_failed) store.reset_failed(scenario);
     const int reused = done_count(store, scenario);
+    auto query_of = [&](std::size_t e) {
+        aero::AeroQuery<double> p = query_at(grid.value(e, 0), grid.value(e, 1), 0.0);
+        set_control(p, plan.control, grid.value(e, 2));
+        return p;
+    };
 
-    // Latin hypercube over (alpha, M, delta) snapped to the deflected entries (delta != 0).
+    // Initial design: a maximin Latin hypercube over (alpha, M, delta) snapped to the deflected
+    // entries (delta != 0). Already stored entries are kept as they are.
     {
         std::vector<bool> taken(grid.size(), false);
         for (std::size_t e = 0; e < grid.size(); ++e)
             if (grid.value(e, 2) == 0.0) taken[e] = true;
-        const Matrix lhs = surrogate::latin_hypercube(plan.samples, 3, plan.seed);
+        const Matrix lhs =
+            surrogate::latin_hypercube(std::min(plan.samples, control_initial_size), 3, plan.seed);
         std::vector<aero::AeroQuery<double>> q;
-        for (const std::size_t e : snap_to_grid(lhs, grid, taken)) {
-            aero::AeroQuery<double> p = query_at(grid.value(e, 0), grid.value(e, 1), 0.0);
-            set_control(p, plan.control, grid.value(e, 2));
-            q.push_back(p);
-        }
+        for (const std::size_t e : snap_to_grid(lhs, grid, taken)) q.push_back(query_of(e));
         store.schedule(scenario, q);
     }
     run.new_phase(scenario, plan.samples, -1.0);
     run.evaluate_pending(scenario, plan.samples);
 
-    std::vector<Sample> done;
-    for (const Sample& s : store.samples(scenario))
-        if (s.status == SampleStatus::done) done.push_back(s);
-    if (done.size() < 4)
-        throw ConvergenceError(fmt::format(
-            "tables: the {} scenario has {} done samples; at least 4 are needed for the "
-            "Co-Kriging (see samples.csv; --retry-failed evaluates failed samples again)",
-            scenario, done.size()));
-    // Expensive data: the deflected samples. (Anchoring the fused model with the static values
-    // on the plane delta = 0 was tried and made the increments worse: docs/tables.md.)
-    const auto n = static_cast<Eigen::Index>(done.size());
-    Matrix X(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        const auto& q = done[static_cast<std::size_t>(i)].query;
-        X.row(i) = grid.box.unit(q.alpha, q.mach, get_control(q, plan.control));
+    // Which static slope scales each coefficient (fixed by the static model, not the samples).
+    std::array<StaticSlope, 6> slope;
+    for (std::size_t j = 0; j < 6; ++j) {
+        double sa = 0.0, sb = 0.0;
+        StaticSlope by_alpha{static_model, j, false}, by_beta{static_model, j, true};
+        for (const double a : plan.alpha)
+            for (const double m : plan.mach) {
+                sa = std::max(sa, std::abs(by_alpha(a, m)));
+                sb = std::max(sb, std::abs(by_beta(a, m)));
+            }
+        slope[j] = sa >= sb ? by_alpha : by_beta;
     }
-    auto impl = std::make_shared<ControlModel::Impl>();
-    impl->control = plan.control;
-    impl->box = grid.box;
-    report.loo.clear();
-    report.rho.clear();
+    const double dmax = std::max(std::abs(grid.box.lo[2]), std::abs(grid.box.hi[2]));
+
+    std::shared_ptr<ControlModel::Impl> impl;
     double cv = 0.0;
-    const surrogate::KrigingOptions& ko = run.campaign_.static_table.kriging;
-    for (int j = 0; j < 6; ++j) {
-        const auto sj = static_cast<std::size_t>(j);
-        Vector y(n), cheap_values(n);
-        for (Eigen::Index i = 0; i < n; ++i)
-            y[i] = coefficient(done[static_cast<std::size_t>(i)].result, j);
-        LooError e{coefficient_names[j], 0.0, y.maxCoeff() - y.minCoeff(), 0.0};
-        // Cheap level: the static model at (alpha, M, beta = 0), ignoring the deflection.
-        const Box3 box = grid.box;
-        surrogate::CheapModel cheap = [static_model, box, j](const Vector& x) {
-            return static_model->predict(box.from_unit(0, x[0]), box.from_unit(1, x[1]),
-                                         0.0)[static_cast<std::size_t>(j)];
-        };
-        for (Eigen::Index i = 0; i < n; ++i) cheap_values[i] = cheap(X.row(i).transpose()).mean;
-        if (is_constant(y)) {
-            impl->constant[sj] = y.mean();
-            impl->rho[sj] = 0.0;
-        } else if (!(cheap_values.maxCoeff() - cheap_values.minCoeff() >
-                     1e-3 * (y.maxCoeff() - y.minCoeff()))) {
-            // The static coefficient does not vary at beta = 0 (a lateral coefficient of a
-            // symmetric aircraft): the cheap level carries no information and rho would fit its
-            // noise; the fused model reduces to a Kriging of the data (rho = 0).
-            impl->plain[sj] = surrogate::Kriging::fit(X, y, ko);
-            impl->rho[sj] = 0.0;
-            e.rmse = impl->plain[sj]->loo_rmse();
-        } else {
-            impl->fused[sj] = surrogate::CoKriging::fit(cheap, X, y, ko);
-            impl->rho[sj] = impl->fused[sj]->rho();
-            e.rmse = impl->fused[sj]->difference_model().loo_rmse();
+    for (;;) {
+        std::vector<Sample> done;
+        int failed = 0;
+        for (const Sample& s : store.samples(scenario)) {
+            if (s.status == SampleStatus::done) done.push_back(s);
+            if (s.status == SampleStatus::failed) ++failed;
         }
-        e.relative = e.range > 0.0 ? e.rmse / e.range : 0.0;
-        cv = std::max(cv, e.relative);
-        report.loo.push_back(e);
-        report.rho.push_back(impl->rho[sj]);
+        if (done.size() < 4)
+            throw ConvergenceError(fmt::format(
+                "tables: the {} scenario has {} done samples; at least 4 are needed for the "
+                "increment model (see samples.csv; --retry-failed evaluates failed samples again)",
+                scenario, done.size()));
+        const auto n = static_cast<Eigen::Index>(done.size());
+        Matrix X(n, 3);
+        for (Eigen::Index i = 0; i < n; ++i) {
+            const auto& q = done[static_cast<std::size_t>(i)].query;
+            X.row(i) = grid.box.unit(q.alpha, q.mach, get_control(q, plan.control));
+        }
+        impl = std::make_shared<ControlModel::Impl>();
+        impl->control = plan.control;
+        impl->box = grid.box;
+        report.loo.clear();
+        report.rho.clear();
+        cv = 0.0;
+        for (std::size_t j = 0; j < 6; ++j) {
+            // Increment samples over the static model at (alpha, M, beta = 0), per radian.
+            Vector dc(n), g(n), r(n);
+            for (Eigen::Index i = 0; i < n; ++i) {
+                const Sample& s = done[static_cast<std::size_t>(i)];
+                const double d = get_control(s.query, plan.control);
+                dc[i] = coefficient(s.result, static_cast<int>(j)) -
+                        static_model->predict(s.query.alpha, s.query.mach, 0.0)[j].mean;
+                g[i] = dc[i] / d;
+                r[i] = slope[j](s.query.alpha, s.query.mach);
+            }
+            LooError e{coefficient_names[j], 0.0, dc.maxCoeff() - dc.minCoeff(), 0.0};
+            double gain = 0.0;
+            if (is_constant(g)) {
+                impl->constant[j] = g.mean();
+            } else {
+                surrogate::KrigingOptions o = run.campaign_.static_table.kriging;
+                o.theta_min = std::max(o.theta_min, control_theta_min);
+                o.theta_max = std::max(o.theta_max, 10 * o.theta_min);
+                // Universal trend 1, alpha, M, delta (constant with few samples), plus the
+                // static slope where it varies over the samples.
+                o.trend = n >= 7 ? surrogate::Trend::linear : surrogate::Trend::constant;
+                const bool use_slope = !is_constant(r) && n >= 5;
+                if (use_slope) {
+                    const Box3 box = grid.box;
+                    o.extra_regressors = [f = slope[j], box](const Vector& x) {
+                        Vector v(1);
+                        v[0] = f(box.from_unit(0, x[0]), box.from_unit(1, x[1]));
+                        return v;
+                    };
+                }
+                const surrogate::Kriging& k =
+                    impl->ratio[j].emplace(surrogate::Kriging::fit(X, g, o));
+                if (use_slope) gain = k.trend_coefficients()[k.trend_coefficients().size() - 1];
+                // LOO error of the increment: delta_i times the LOO residual of g.
+                const Vector res = k.loo_residuals();
+                double ss = 0.0;
+                for (Eigen::Index i = 0; i < n; ++i) {
+                    const double d = grid.box.from_unit(2, X(i, 2));
+                    ss += d * d * res[i] * res[i];
+                }
+                e.rmse = std::sqrt(ss / static_cast<double>(n));
+            }
+            e.relative = e.range > 0.0 ? e.rmse / e.range : 0.0;
+            cv = std::max(cv, e.relative);
+            report.loo.push_back(e);
+            report.rho.push_back(gain);
+        }
+        run.new_phase(scenario, plan.samples, cv);
+
+        const int used = static_cast<int>(done.size()) + failed;
+        if (used >= plan.samples) {
+            report.stop_reason = "budget";
+            break;
+        }
+        // Infill: the free deflected entries of largest increment MSE, delta^2 mse_g(x) over
+        // the process variance of g (delta scaled by the largest |delta|), summed over the
+        // coefficients; q = batch per round, the later ones by the Kriging believer (the pick
+        // joins the data at its predicted value, the MSE drops around it).
+        std::vector<bool> taken(grid.size(), false);
+        for (const Sample& s : store.samples(scenario)) {
+            const long e =
+                grid.find(s.query.alpha, s.query.mach, get_control(s.query, plan.control));
+            if (e >= 0) taken[static_cast<std::size_t>(e)] = true;
+        }
+        std::vector<std::size_t> free;
+        for (std::size_t e = 0; e < grid.size(); ++e)
+            if (!taken[e] && grid.value(e, 2) != 0.0) free.push_back(e);
+        if (free.empty()) {
+            report.stop_reason = "grid";
+            break;
+        }
+        const int q = std::min({batch, plan.samples - used, static_cast<int>(free.size())});
+        std::array<std::optional<surrogate::Kriging>, 6> believer = impl->ratio;
+        std::vector<std::size_t> chosen;
+        for (int k = 0; k < q; ++k) {
+            double best = -1.0;
+            std::size_t pick = free.front();
+            for (const std::size_t e : free) {
+                if (std::find(chosen.begin(), chosen.end(), e) != chosen.end()) continue;
+                const Vector x = grid.unit.row(static_cast<Eigen::Index>(e)).transpose();
+                const double w = grid.value(e, 2) / dmax;
+                double c = 0.0;
+                for (const auto& m : believer)
+                    if (m) c += w * w * m->predict_with_mse(x).mse / m->process_variance();
+                if (c > best) {
+                    best = c;
+                    pick = e;
+                }
+            }
+            chosen.push_back(pick);
+            if (k + 1 == q) break;
+            const Vector x = grid.unit.row(static_cast<Eigen::Index>(pick)).transpose();
+            for (auto& m : believer) {
+                if (!m) continue;
+                Matrix Xa(m->points().rows() + 1, 3);
+                Xa << m->points(), x.transpose();
+                Vector ya(m->values().size() + 1);
+                ya << m->values(), m->predict(x);
+                m = surrogate::Kriging::with_hyperparameters(Xa, ya, m->options(),
+                                                             m->hyperparameters());
+            }
+        }
+        std::vector<aero::AeroQuery<double>> pts;
+        for (const std::size_t e : chosen) pts.push_back(query_of(e));
+        store.schedule(scenario, pts);
+        run.evaluate_pending(scenario, plan.samples);
     }
-    run.new_phase(scenario, plan.samples, cv);
     model_out = std::make_shared<const ControlModel>(impl);
 
     TableWithSigma t;
@@ -727,7 +842,6 @@ TableWithSigma run_control(Runner& run, const ControlPlan& plan,
     count_samples(store.samples(scenario), report);
     report.scenario = scenario;
     report.reused = reused;
-    report.stop_reason = "design";
     return t;
 }
 
@@ -814,7 +928,7 @@ CampaignResult run_campaign(const Campaign& campaign, const aero::AeroSource& so
     for (const ControlPlan& plan : campaign.controls) {
         ScenarioReport cr;
         std::shared_ptr<const ControlModel> m;
-        result.tables.push_back(run_control(run, plan, result.static_model, cr, m));
+        result.tables.push_back(run_control(run, plan, batch, result.static_model, cr, m));
         result.control_models.push_back(m);
         result.reports.push_back(cr);
     }
@@ -847,8 +961,8 @@ aero::AeroDatabase make_database(const Campaign& campaign, const CampaignResult&
             d += fmt::format("; dynamic derivatives by central differences ({} samples)",
                              r.samples_done);
         else
-            d += fmt::format("; {} increments by Co-Kriging ({} samples)", r.scenario.substr(8),
-                             r.samples_done);
+            d += fmt::format("; {} increments fused with the static model ({} samples)",
+                             r.scenario.substr(8), r.samples_done);
     }
     info.description = d;
     std::vector<aero::Table> tables;

@@ -1,7 +1,8 @@
 /// Campaigns on the analytic source: scenario 1 (static table) reaches a stated accuracy against
-/// the closed form, scenario 2 (control increments by Co-Kriging) is exactly zero at zero
-/// deflection and accurate elsewhere, dynamic derivatives match the closed form, and a campaign
-/// interrupted (twice, with samples in flight) and resumed gives bit-identical tables.
+/// the closed form, scenario 2 (control increments fused with the static model from 12 samples)
+/// is exactly zero at zero deflection and accurate elsewhere, dynamic derivatives match the closed
+/// form, and a campaign interrupted (twice, with samples in flight) and resumed gives bit-identical
+/// tables.
 
 #include <gtest/gtest.h>
 
@@ -163,13 +164,17 @@ TEST(Campaign, ControlIncrementsAreZeroAtZeroDeflectionAndAccurate) {
                                                   ? std::vector<std::size_t>{0, 1, 4}
                                                   : std::vector<std::size_t>{2, 3, 5};
         for (const std::size_t j : main) {
-            std::printf("%s d%s: max error %.2f %% of max |increment| %.4f, rho %.3f\n",
+            std::printf("%s d%s: max error %.2f %% of max |increment| %.4f, slope gain %.3f\n",
                         std::string(aero::to_string(control)).c_str(), coefficient_names[j],
                         100 * err[j] / range[j], range[j], r.reports[k].rho[j]);
-            // Measured (docs/tables.md): elevator 19 %, rudder 4 % of the largest increment with
-            // 12 samples over 9 x 6 x 9 entries; the bound leaves a margin for platform noise.
-            const double bound = control == aero::Axis::elevator ? 0.25 : 0.06;
-            EXPECT_LT(err[j], (j == 1 ? 2.0 : 1.0) * bound * range[j])
+            // Measured (docs/tables.md), 12 samples over 9 x 6 x 9 entries: elevator dCL 5.0 %,
+            // dCD 10.6 %, dCm 5.3 %; rudder dCY 0.11 %, dCl 2.4 %, dCn 0.11 % of the largest
+            // increment (the previous Co-Kriging of the full coefficient: 19 %, 45 %, 19 %; 3.7 %).
+            // The bounds leave a margin for platform differences.
+            const double bound = control == aero::Axis::elevator ? (j == 1 ? 0.13 : 0.065)
+                                 : j == 3                        ? 0.035
+                                                                 : 0.005;
+            EXPECT_LT(err[j], bound * range[j])
                 << aero::to_string(control) << " " << coefficient_names[j];
         }
     }

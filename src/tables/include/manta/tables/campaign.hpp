@@ -62,7 +62,7 @@ struct ControlPlan {
     std::vector<double> deflection;             ///< breakpoints [rad], always containing 0
     std::vector<double> alpha;                  ///< [rad]; default the static alpha axis
     std::vector<double> mach;                   ///< default the static Mach axis
-    int samples = 12;                           ///< deflected samples (Latin hypercube, delta != 0)
+    int samples = 12;  ///< deflected samples (delta != 0): 7 by Latin hypercube, the rest by MSE
     std::uint64_t seed = 2;
     std::string where;  ///< "file:line: key 'controls.elevator.deflection_deg'" for messages
 };

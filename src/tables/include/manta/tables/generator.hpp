@@ -1,8 +1,8 @@
 #pragma once
 /// @file generator.hpp
 /// Running a campaign: sampling an `aero::AeroSource` through the sample store and rebuilding
-/// the tables by Kriging (static table), Co-Kriging (control increments) and central differences
-/// (dynamic derivatives). Theory and user guide: docs/tables.md.
+/// the tables by Kriging (static table), Kriging of the control increments fused with the static
+/// model, and central differences (dynamic derivatives). Theory and user guide: docs/tables.md.
 ///
 /// Determinism: every choice (initial design, infill, hyper-parameter starts) depends only on
 /// the campaign and on the samples already done, taken in scheduling order, so a campaign
@@ -68,8 +68,10 @@ struct ScenarioReport {
     int reused = 0;                   ///< found done in the store
     double sample_wall_time_s = 0.0;  ///< summed wall time of the done samples
     std::vector<LooError> loo;        ///< per coefficient (static and control scenarios)
-    std::vector<double> rho;          ///< control scenarios: Co-Kriging rho per coefficient
-    std::string stop_reason;          ///< "budget", "cv_threshold", "design", "grid"
+    /// Control scenarios, per coefficient: the trend coefficient ("slope gain") of the static slope
+    /// regressor in the model of dC / delta (0 where that model is a constant).
+    std::vector<double> rho;
+    std::string stop_reason;  ///< "budget", "cv_threshold", "design", "grid"
 };
 
 /// The static surrogate: one Kriging per coefficient over the unit cube of (alpha, M, beta).
@@ -85,11 +87,13 @@ private:
     std::shared_ptr<const Impl> impl_;
 };
 
-/// The fused control model of one control: Co-Kriging per coefficient over (alpha, M, delta).
+/// The control model of one control, per coefficient over (alpha, M, delta):
+/// dC = delta * g(alpha, M, delta), g a Kriging of the samples' (C - C_static(alpha, M, 0)) / delta
+/// with the static model's slope (d/dalpha or d/dbeta at beta = 0) as a trend regressor.
 class ControlModel {
 public:
-    /// Increment dC(alpha, M, delta) = fused(alpha, M, delta) - fused(alpha, M, 0) with the MSE
-    /// of the fused prediction at delta (0 at delta = 0, where the increment is exactly 0).
+    /// Increment dC(alpha, M, delta) = delta * g(alpha, M, delta) and its MSE delta^2 MSE_g;
+    /// exactly 0 (MSE 0) at delta = 0.
     [[nodiscard]] std::array<surrogate::Prediction, 6> increment(double alpha, double mach,
                                                                  double delta) const;
     [[nodiscard]] aero::Axis control() const;
