@@ -25,7 +25,8 @@ endfunction()
 
 # manta_module_tests(PREFIX <prefix> DEPS <targets...>)
 # One test executable <prefix>_<stem> per test_*.cpp of the calling folder; files named
-# test_*_validation.cpp carry the `validation` label, the others `unit`.
+# test_*_validation.cpp carry the `validation` label, test_*_slow.cpp `slow` (not in `make test`),
+# the others `unit`.
 function(manta_module_tests)
     cmake_parse_arguments(MT "" "PREFIX" "DEPS" ${ARGN})
     file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test_*.cpp)
@@ -33,6 +34,8 @@ function(manta_module_tests)
         get_filename_component(stem ${f} NAME_WE)
         if(stem MATCHES "_validation$")
             set(labels validation)
+        elseif(stem MATCHES "_slow$")
+            set(labels slow)
         else()
             set(labels unit)
         endif()

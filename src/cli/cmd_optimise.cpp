@@ -1,22 +1,30 @@
 /// @file cmd_optimise.cpp
 /// `manta optimise`: optimal control by Legendre–Gauss–Lobatto collocation and IPOPT
-/// (docs/optimal-control.md). Now: the solver's validation problems; the mesh, solver and
-/// output options are problem-agnostic so that aircraft manoeuvres (--aircraft, --manoeuvre)
-/// can share them.
+/// (docs/optimal-control.md): the solver's validation problems (--problem), and aircraft
+/// manoeuvres (--aircraft, --manoeuvre; docs/manoeuvres.md) with trajectory CSV, summary JSON
+/// and time-history plots.
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
+#include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
+#include "manta/manoeuvres/manoeuvre.hpp"
+#include "manta/manoeuvres/problem.hpp"
 #include "manta/optimal/problems.hpp"
 #include "manta/optimal/solve.hpp"
+#include "svg_plot.hpp"
 
 namespace manta::cli {
 
@@ -26,6 +34,12 @@ namespace fs = std::filesystem;
 
 struct OptimiseOptions {
     std::string problem;
+    std::string aircraft;   ///< aircraft file (manoeuvre form)
+    std::string manoeuvre;  ///< manoeuvre file (manoeuvre form)
+    std::string tables;     ///< aero database replacing the aircraft's (manoeuvre form)
+    bool nodes_given = false;
+    bool hessian_given = false;
+    bool tolerance_given = false;
     int nodes = 40;
     int segments = 1;
     bool free_breaks = false;
@@ -84,15 +98,15 @@ Case make_case(const OptimiseOptions& o) {
     return c;
 }
 
-nlohmann::json summary(const OptimiseOptions& o, const optimal::Solution& s, const Case& c,
-                       const optimal::Mesh& mesh) {
+/// The fields every optimise summary has: IPOPT's outcome, times, violations, re-simulation.
+nlohmann::json solution_fields(const optimal::Solution& s, const optimal::Mesh& mesh,
+                               const std::string& hessian) {
     nlohmann::json resim_abs = nlohmann::json::object();
     for (int r = 0; r < s.info.n_states(); ++r) {
         resim_abs[s.info.states[r].name] =
             s.resimulation.max_abs_error.size() > r ? s.resimulation.max_abs_error(r) : 0.0;
     }
     nlohmann::json j = {
-        {"problem", o.problem},
         {"status", optimal::to_string(s.status)},
         {"converged", s.converged()},
         {"ipopt_status", s.status_text},
@@ -104,19 +118,142 @@ nlohmann::json summary(const OptimiseOptions& o, const optimal::Solution& s, con
         {"max_constraint_violation", s.max_violation},
         {"resimulation_error", s.resimulation.max_scaled_error},
         {"resimulation_max_abs_error", resim_abs},
-        {"nodes", o.nodes},
         {"segments", mesh.n_segments()},
         {"breaks", s.breaks},
-        {"hessian", o.hessian},
+        {"hessian", hessian},
         {"n_variables", s.n_variables},
         {"n_constraints", s.n_constraints},
-        {"reference", c.reference},
     };
+    if (!s.resimulation.done) j["resimulation_message"] = s.resimulation.message;
+    return j;
+}
+
+nlohmann::json summary(const OptimiseOptions& o, const optimal::Solution& s, const Case& c,
+                       const optimal::Mesh& mesh) {
+    nlohmann::json j = solution_fields(s, mesh, o.hessian);
+    j["problem"] = o.problem;
+    j["nodes"] = o.nodes;
+    j["reference"] = c.reference;
     if (std::isfinite(c.reference_final_time)) {
         j["final_time_error"] = s.final_time - c.reference_final_time;
     }
-    if (!s.resimulation.done) j["resimulation_message"] = s.resimulation.message;
     return j;
+}
+
+/// The progress callback: every iteration with --progress, else one line per block of 10.
+std::function<bool(const optimal::IterationInfo&)> progress_printer(bool every) {
+    return [every](const optimal::IterationInfo& it) {
+        if (every || it.iteration % 10 == 0) {
+            std::fprintf(stderr,
+                         "iter %4d%s  objective %.10g  inf_pr %.2e  inf_du %.2e  mu %.1e  "
+                         "step %.2e\n",
+                         it.iteration, it.restoration ? "r" : " ", it.objective, it.infeasibility,
+                         it.dual_infeasibility, it.mu, it.step);
+        }
+        return true;
+    };
+}
+
+/// Time histories like the paper's Figs. 10-12 (states, then controls and load factor).
+void write_plots(const manoeuvres::Trajectory& t, const std::string& name, const fs::path& out) {
+    const std::vector<double> time = t.column("t_s");
+    auto panels = [&](const std::vector<std::pair<std::string, std::string>>& cols) {
+        std::vector<Panel> p;
+        for (const auto& [col, label] : cols) p.push_back({label, t.column(col)});
+        return p;
+    };
+    const std::string states = svg_time_histories(name + ": states", "time [s]", time,
+                                                  panels({{"alpha_deg", "alpha [deg]"},
+                                                          {"beta_deg", "beta [deg]"},
+                                                          {"V_m_s", "V [m/s]"},
+                                                          {"pitch_deg", "pitch angle [deg]"},
+                                                          {"bank_deg", "roll angle [deg]"},
+                                                          {"heading_deg", "yaw angle [deg]"},
+                                                          {"altitude_m", "altitude [m]"},
+                                                          {"load_factor", "load factor nz [-]"}}),
+                                                  2);
+    const std::string controls =
+        svg_time_histories(name + ": controls", "time [s]", time,
+                           panels({{"elevator_deg", "elevator [deg]"},
+                                   {"aileron_deg", "aileron [deg]"},
+                                   {"rudder_deg", "rudder [deg]"},
+                                   {"throttle", "throttle [-]"},
+                                   {"p_deg_s", "p [deg/s]"},
+                                   {"q_deg_s", "q [deg/s]"},
+                                   {"r_deg_s", "r [deg/s]"},
+                                   {"roll_angle_deg", "integral of p [deg]"}}),
+                           2);
+    for (const auto& [file, text] :
+         {std::pair{out / "states.svg", states}, std::pair{out / "controls.svg", controls}}) {
+        core::write_file_atomic(file, text);
+    }
+}
+
+int run_manoeuvre(const OptimiseOptions& o) {
+    const auto aircraft = aircraft::load_aircraft(o.aircraft);
+    manoeuvres::ManoeuvreSpec spec = manoeuvres::load_manoeuvre(o.manoeuvre);
+    std::shared_ptr<const aero::AeroDatabase> tables;
+    if (!o.tables.empty()) {
+        tables = std::make_shared<const aero::AeroDatabase>(aero::AeroDatabase::read(o.tables));
+    }
+    if (o.nodes_given) spec.nodes = o.nodes;
+    if (o.segments > 1) spec.segments = o.segments;
+    const manoeuvres::ManoeuvreProblem problem(manoeuvres::manoeuvre_model(aircraft, spec, tables),
+                                               spec);
+    optimal::SolverOptions so;
+    const std::string hessian = o.hessian_given ? o.hessian : spec.hessian;
+    so.hessian =
+        hessian == "exact" ? optimal::HessianMode::exact : optimal::HessianMode::limited_memory;
+    so.tolerance = o.tolerance_given ? o.tolerance : spec.tolerance;
+    so.max_iterations = std::min(o.max_iterations, spec.max_iterations);
+    so.print_level = o.ipopt_print_level;
+    so.progress = progress_printer(o.progress);
+    const fs::path out = o.out;
+    if (!out.empty()) {
+        fs::create_directories(out);
+        so.failure_csv = out / "best_iterate.csv";
+    }
+    const manoeuvres::ManoeuvreResult r = manoeuvres::fly(problem, so);
+    const optimal::Solution& s = r.solution;
+    const manoeuvres::Trajectory traj = manoeuvres::trajectory(problem, s);
+    const manoeuvres::ConstraintCheck c = manoeuvres::check(problem, traj);
+    nlohmann::json j = solution_fields(s, r.mesh, hessian);
+    j["manoeuvre"] = spec.name;
+    j["aircraft"] = aircraft.name;
+    j["mass_kg"] = problem.model().mass.mass;
+    j["nodes"] = spec.nodes;
+    j["checks"] = {{"alpha_max_deg", c.alpha_max_deg},
+                   {"load_factor_min", c.load_factor_min},
+                   {"load_factor_max", c.load_factor_max},
+                   {"control_limit_excess", c.control_limit_excess},
+                   {"final_heading_change_deg", c.final_heading_change_deg},
+                   {"final_bank_deg", c.final_bank_deg},
+                   {"final_speed", c.final_speed},
+                   {"final_altitude", c.final_altitude}};
+    if (!out.empty()) {
+        manoeuvres::write_trajectory_csv(traj, out / "trajectory.csv");
+        if (s.converged()) optimal::write_csv(s, out / "solution.csv");
+        write_plots(traj, spec.name, out);
+        core::write_file_atomic(out / "summary.json", j.dump(2) + '\n');
+    }
+    if (o.json) {
+        print_json(j);
+    } else {
+        fmt::print("{}: {} in {} IPOPT iterations, {:.2f} s CPU\n", spec.name, s.status_text,
+                   s.iterations, s.cpu_time);
+        fmt::print("  final time               {:.6g} s\n", s.final_time);
+        fmt::print("  max constraint violation {:.3e}\n", s.max_violation);
+        fmt::print("  re-simulation error      {:.3e} (scaled)\n", s.resimulation.max_scaled_error);
+        fmt::print("  alpha max {:.3f} deg, nz [{:.3f}, {:.3f}], heading change {:.3f} deg\n",
+                   c.alpha_max_deg, c.load_factor_min, c.load_factor_max,
+                   c.final_heading_change_deg);
+        if (!out.empty()) fmt::print("  written to               {}\n", out.string());
+    }
+    if (!s.converged()) {
+        std::fputs(optimal::failure_report(s, so.failure_csv).c_str(), stderr);
+        return 1;
+    }
+    return 0;
 }
 
 }  // namespace
@@ -125,21 +262,36 @@ void add_optimise(CLI::App& app, Action& action) {
     auto* cmd = app.add_subcommand(
         "optimise", "Optimal control by Legendre-Gauss-Lobatto collocation and IPOPT");
     auto o = std::make_shared<OptimiseOptions>();
-    cmd->add_option("--problem", o->problem,
-                    "Validation problem: brachistochrone, min-time-to-climb, double-integrator")
-        ->required()
-        ->check(CLI::IsMember({"brachistochrone", "min-time-to-climb", "double-integrator"}));
-    cmd->add_option("--nodes", o->nodes, "LGL points per segment (default 40)")
-        ->check(CLI::Range(2, 400));
+    auto* problem_opt =
+        cmd->add_option("--problem", o->problem,
+                        "Validation problem: brachistochrone, min-time-to-climb, double-integrator")
+            ->check(CLI::IsMember({"brachistochrone", "min-time-to-climb", "double-integrator"}));
+    auto* aircraft_opt =
+        cmd->add_option("--aircraft", o->aircraft, "Aircraft file (with --manoeuvre)")
+            ->check(CLI::ExistingFile);
+    auto* manoeuvre_opt =
+        cmd->add_option("--manoeuvre", o->manoeuvre, "Manoeuvre file (docs/manoeuvres.md)")
+            ->check(CLI::ExistingFile);
+    cmd->add_option("--tables", o->tables, "Aero database replacing the aircraft's")
+        ->check(CLI::ExistingFile);
+    aircraft_opt->needs(manoeuvre_opt);
+    manoeuvre_opt->needs(aircraft_opt);
+    problem_opt->excludes(aircraft_opt);
+    problem_opt->excludes(manoeuvre_opt);
+    auto* nodes_opt = cmd->add_option("--nodes", o->nodes,
+                                      "LGL points per segment (default 40, or the manoeuvre's)")
+                          ->check(CLI::Range(2, 400));
     cmd->add_option("--segments", o->segments, "Number of equal segments, hp (default 1)")
         ->check(CLI::Range(1, 200));
     cmd->add_flag("--free-breaks", o->free_breaks, "Segment breaks are decision variables");
     cmd->add_flag("--refine", o->refine,
                   "After solving, break the mesh where a control jumps and re-solve (hp)");
-    cmd->add_option("--hessian", o->hessian, "exact (default) or limited-memory")
-        ->check(CLI::IsMember({"exact", "limited-memory"}));
-    cmd->add_option("--tol", o->tolerance, "IPOPT tolerance (default 1e-8)")
-        ->check(CLI::PositiveNumber);
+    auto* hessian_opt =
+        cmd->add_option("--hessian", o->hessian, "exact (default) or limited-memory")
+            ->check(CLI::IsMember({"exact", "limited-memory"}));
+    auto* tol_opt =
+        cmd->add_option("--tol", o->tolerance, "IPOPT tolerance (default 1e-8, or the manoeuvre's)")
+            ->check(CLI::PositiveNumber);
     cmd->add_option("--max-iter", o->max_iterations, "IPOPT iteration limit (default 3000)")
         ->check(CLI::Range(1, 1000000));
     cmd->add_option("--atmosphere", o->atmosphere,
@@ -151,8 +303,16 @@ void add_optimise(CLI::App& app, Action& action) {
     cmd->add_option("--ipopt-print-level", o->ipopt_print_level,
                     "IPOPT's own console output, 0 (default) to 12")
         ->check(CLI::Range(0, 12));
-    cmd->callback([o, &action] {
+    cmd->callback([o, &action, nodes_opt, hessian_opt, tol_opt, problem_opt, aircraft_opt] {
+        o->nodes_given = nodes_opt->count() > 0;
+        o->hessian_given = hessian_opt->count() > 0;
+        o->tolerance_given = tol_opt->count() > 0;
+        if (problem_opt->count() == 0 && aircraft_opt->count() == 0) {
+            throw CLI::ValidationError("optimise",
+                                       "give --problem NAME, or --aircraft FILE --manoeuvre FILE");
+        }
         action = [o]() -> int {
+            if (!o->aircraft.empty()) return run_manoeuvre(*o);
             Case c = make_case(*o);
             optimal::Mesh mesh = optimal::Mesh::uniform(o->segments, o->nodes);
             mesh.free_breaks = o->free_breaks;
@@ -192,9 +352,7 @@ void add_optimise(CLI::App& app, Action& action) {
             if (!out.empty()) {
                 fs::create_directories(out);
                 if (s.converged()) optimal::write_csv(s, out / "solution.csv");
-                std::ofstream f(out / "summary.json");
-                if (!f) throw IoError("cannot write '" + (out / "summary.json").string() + "'");
-                f << j.dump(2) << '\n';
+                core::write_file_atomic(out / "summary.json", j.dump(2) + '\n');
             }
             if (o->json) {
                 print_json(j);

@@ -23,6 +23,33 @@ std::string num(double v) {
     return fmt::format("{:g}", v);
 }
 
+// Widen a flat y range and add a 6 % margin above and below.
+void pad_range(double& lo, double& hi) {
+    if (hi - lo < 1e-9 * std::max(1.0, std::abs(hi))) {
+        lo -= std::max(1e-3, 0.05 * std::abs(lo));
+        hi += std::max(1e-3, 0.05 * std::abs(hi));
+    }
+    const double pad = 0.06 * (hi - lo);
+    lo -= pad;
+    hi += pad;
+}
+
+// A panel's frame and its horizontal grid lines with y tick labels; Y maps a value to pixels.
+template <class YMap>
+std::string frame_and_y_grid(int x0, int x1, int y0, int y1, double lo, double hi, const YMap& Y) {
+    std::string s = fmt::format(
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", x0,
+        y0, x1 - x0, y1 - y0);
+    const double ys = nice_step(lo, hi, 4);
+    for (double v = std::ceil(lo / ys) * ys; v <= hi; v += ys) {
+        s += fmt::format(
+            "<line x1=\"{}\" x2=\"{}\" y1=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
+            "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n",
+            x0, x1, Y(v), Y(v), x0 - 4, Y(v) + 4, num(v));
+    }
+    return s;
+}
+
 }  // namespace
 
 std::string svg_time_histories(const std::string& title, const std::string& x_label,
@@ -48,25 +75,10 @@ std::string svg_time_histories(const std::string& title, const std::string& x_la
         const int x0 = ox + ml, x1 = ox + pw - mr, y0 = oy + mt, y1 = oy + ph - mb;
         double lo = *std::min_element(p.y.begin(), p.y.end()),
                hi = *std::max_element(p.y.begin(), p.y.end());
-        if (hi - lo < 1e-9 * std::max(1.0, std::abs(hi))) {
-            lo -= std::max(1e-3, 0.05 * std::abs(lo));
-            hi += std::max(1e-3, 0.05 * std::abs(hi));
-        }
-        const double pad = 0.06 * (hi - lo);
-        lo -= pad;
-        hi += pad;
+        pad_range(lo, hi);
         auto X = [&](double v) { return x0 + (v - t0) / (t1 - t0) * (x1 - x0); };
         auto Y = [&](double v) { return y1 - (v - lo) / (hi - lo) * (y1 - y0); };
-        s += fmt::format(
-            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n",
-            x0, y0, x1 - x0, y1 - y0);
-        const double ys = nice_step(lo, hi, 4);
-        for (double v = std::ceil(lo / ys) * ys; v <= hi; v += ys) {
-            s += fmt::format(
-                "<line x1=\"{}\" x2=\"{}\" y1=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
-                "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n",
-                x0, x1, Y(v), Y(v), x0 - 4, Y(v) + 4, num(v));
-        }
+        s += frame_and_y_grid(x0, x1, y0, y1, lo, hi, Y);
         const double xs = nice_step(t0, t1, 6);
         for (double v = std::ceil(t0 / xs) * xs; v <= t1 + 1e-9; v += xs) {
             s += fmt::format(
@@ -143,24 +155,10 @@ std::string svg_xy_panels(const std::string& title, const std::string& x_label,
         for (const auto& q : p.points) take(q.x, q.y);
         if (xlo > xhi) continue;
         if (xhi - xlo < 1e-12) xhi = xlo + 1.0;
-        if (hi - lo < 1e-9 * std::max(1.0, std::abs(hi))) {
-            lo -= std::max(1e-3, 0.05 * std::abs(lo));
-            hi += std::max(1e-3, 0.05 * std::abs(hi));
-        }
-        const double pad = 0.06 * (hi - lo);
-        lo -= pad;
-        hi += pad;
+        pad_range(lo, hi);
         auto X = [&](double v) { return x0 + (v - xlo) / (xhi - xlo) * (x1 - x0); };
         auto Y = [&](double v) { return y1 - (v - lo) / (hi - lo) * (y1 - y0); };
-        s += fmt::format(
-            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n",
-            x0, y0, x1 - x0, y1 - y0);
-        const double ys = nice_step(lo, hi, 4);
-        for (double v = std::ceil(lo / ys) * ys; v <= hi; v += ys)
-            s += fmt::format(
-                "<line x1=\"{}\" x2=\"{}\" y1=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>"
-                "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n",
-                x0, x1, Y(v), Y(v), x0 - 4, Y(v) + 4, num(v));
+        s += frame_and_y_grid(x0, x1, y0, y1, lo, hi, Y);
         const double xs = nice_step(xlo, xhi, 6);
         for (double v = std::ceil(xlo / xs) * xs; v <= xhi + 1e-9; v += xs)
             s += fmt::format(

@@ -5,10 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
 #include "manta/optimal/lgl.hpp"
 #include "manta/optimal/solve.hpp"
 
@@ -249,12 +250,7 @@ std::string failure_report(const Solution& sol, const std::filesystem::path& csv
 }
 
 void write_csv(const Solution& sol, const std::filesystem::path& file) {
-    if (file.has_parent_path()) {
-        std::error_code ec;
-        std::filesystem::create_directories(file.parent_path(), ec);
-    }
-    std::ofstream out(file);
-    if (!out) throw IoError("cannot write solution CSV '" + file.string() + "'");
+    std::ostringstream out;
     out << "t,segment,node";
     for (const auto& v : sol.info.states) out << ',' << v.name;
     for (const auto& v : sol.info.controls) out << ',' << v.name;
@@ -276,7 +272,7 @@ void write_csv(const Solution& sol, const std::filesystem::path& file) {
             out << '\n';
         }
     }
-    if (!out) throw IoError("error writing solution CSV '" + file.string() + "'");
+    core::write_file_atomic(file, out.str());  // creates the folder
 }
 
 }  // namespace manta::optimal

@@ -186,6 +186,11 @@ contains "optimise refined segments" "$work/out.txt" '"segments": 2'
 [ -s "$work/di/solution.csv" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: optimise wrote no solution.csv"; }
 check "optimise failed run" 1 "$manta" optimise --problem min-time-to-climb --max-iter 3 --out "$work/opt_fail"
 [ -s "$work/opt_fail/best_iterate.csv" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: optimise failure wrote no best_iterate.csv"; }
+check "optimise level turn (aircraft)" 0 "$manta" optimise --aircraft "$ranger" --manoeuvre "$root/examples/ranger2000/manoeuvres/level_turn.yaml" --out "$work/turn" --json
+json_ok "optimise aircraft json"
+contains "optimise aircraft converged" "$work/out.txt" '"converged": true'
+[ -s "$work/turn/trajectory.csv" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: optimise wrote no trajectory.csv"; ls "$work/turn"; }
+check "optimise needs a problem or an aircraft" 2 "$manta" optimise --nodes 20
 check "optimise too few nodes" 2 "$manta" optimise --problem min-time-to-climb --nodes 1
 
 echo "$pass passed, $fail failed"

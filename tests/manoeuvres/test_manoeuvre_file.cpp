@@ -1,0 +1,94 @@
+/// @file test_manoeuvre_file.cpp
+/// Manoeuvre files: the examples parse, values land in SI units and radians, and bad files are
+/// rejected with one-line messages naming the key.
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <string>
+
+#include "manta/core/error.hpp"
+#include "manta/manoeuvres/manoeuvre.hpp"
+
+namespace manta::manoeuvres {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+const std::filesystem::path kDir =
+    std::filesystem::path(MANTA_SOURCE_DIR) / "examples/ranger2000/manoeuvres";
+
+TEST(ManoeuvreFile, ExamplesParse) {
+    for (const char* f :
+         {"level_turn.yaml", "immelmann.yaml", "lazy_eight.yaml", "barrel_roll.yaml"}) {
+        EXPECT_NO_THROW((void)load_manoeuvre(kDir / f)) << f;
+    }
+    const ManoeuvreSpec s = load_manoeuvre(kDir / "immelmann.yaml");
+    EXPECT_EQ(s.name, "immelmann");
+    EXPECT_DOUBLE_EQ(s.entry_speed, 163.57);
+    EXPECT_DOUBLE_EQ(s.entry_altitude, 2986.0);
+    EXPECT_TRUE(s.entry_trimmed);
+    EXPECT_EQ(s.heading_change.kind, Target::Kind::range);
+    EXPECT_NEAR(s.heading_change.lower, std::numbers::pi, 1e-15);
+    EXPECT_EQ(s.speed.kind, Target::Kind::entry);
+    EXPECT_NEAR(s.alpha[1], 12.0 * kDeg, 1e-15);
+    EXPECT_EQ(s.mass_case, "immelmann");
+    EXPECT_EQ(s.nodes, 60);
+}
+
+TEST(ManoeuvreFile, TargetsAndDefaults) {
+    const ManoeuvreSpec s = parse_manoeuvre(R"(
+name: t
+entry: {speed: 100, altitude: 1000}
+final:
+  altitude: [900, 1100]
+  bank_deg: 30
+  speed: {entry_offset: [-5, 5]}
+)",
+                                            "inline");
+    EXPECT_EQ(s.altitude.kind, Target::Kind::range);
+    EXPECT_DOUBLE_EQ(s.altitude.lower, 900.0);
+    EXPECT_DOUBLE_EQ(s.altitude.upper, 1100.0);
+    EXPECT_NEAR(s.bank.lower, 30.0 * kDeg, 1e-15);
+    EXPECT_EQ(s.speed.kind, Target::Kind::entry);
+    EXPECT_DOUBLE_EQ(s.speed.lower, -5.0);
+    EXPECT_FALSE(s.heading_change.active());
+    EXPECT_TRUE(s.final_rates_zero);
+    EXPECT_NEAR(s.alpha[1], 12.0 * kDeg, 1e-15);  // the paper's alpha limit by default
+    EXPECT_EQ(s.cost, "minimum_time");
+}
+
+/// The message of the ConfigError/InputError thrown by parsing `text`.
+std::string error_of(const std::string& text) {
+    try {
+        (void)parse_manoeuvre(text, "bad.yaml");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(ManoeuvreFile, Errors) {
+    EXPECT_NE(error_of("name: x\n").find("entry"), std::string::npos);
+    const std::string typo =
+        error_of("name: x\nentry: {speed: 100, altitude: 1000}\nfinal: {hedding_change_deg: 90}\n");
+    EXPECT_NE(typo.find("hedding_change_deg"), std::string::npos) << typo;
+    EXPECT_NE(typo.find("bad.yaml"), std::string::npos) << typo;
+    const std::string order =
+        error_of("name: x\nentry: {speed: 100, altitude: 1000}\nfinal: {altitude: [1100, 900]}\n");
+    EXPECT_NE(order.find("altitude"), std::string::npos) << order;
+    const std::string both =
+        error_of("name: x\nentry: {speed: 100, altitude: 1000}\nfinal: {bank: 0.1, bank_deg: 5}\n");
+    EXPECT_NE(both.find("bank"), std::string::npos) << both;
+    const std::string speed = error_of("name: x\nentry: {speed: -3, altitude: 1000}\n");
+    EXPECT_NE(speed.find("speed"), std::string::npos) << speed;
+    const std::string guess =
+        error_of("name: x\nentry: {speed: 100, altitude: 1000}\nguess: {duration: 500}\n");
+    EXPECT_NE(guess.find("duration"), std::string::npos) << guess;
+    const std::string wp = error_of(
+        "name: x\nentry: {speed: 100, altitude: 1000}\nguess:\n  waypoints:\n"
+        "    - {fraction: 0.5}\n    - {fraction: 0.4}\n");
+    EXPECT_NE(wp.find("fraction"), std::string::npos) << wp;
+}
+
+}  // namespace
+}  // namespace manta::manoeuvres
