@@ -224,18 +224,18 @@ public:
     /// Evaluate the pending samples of `scenario` (scheduling order) with up to `jobs` threads;
     /// each result is committed before the thread takes the next sample.
     void evaluate_pending(const std::string& scenario, int total) {
-        std::vector<Sample> todo;
+        std::vector<Sample> waiting;
         for (Sample& s : store_.samples(scenario))
-            if (s.status == SampleStatus::pending) todo.push_back(std::move(s));
-        if (todo.empty()) return;
+            if (s.status == SampleStatus::pending) waiting.push_back(std::move(s));
+        if (waiting.empty()) return;
         std::atomic<std::size_t> next{0};
         const int n_threads = static_cast<int>(std::min<std::size_t>(
-            static_cast<std::size_t>(std::max(1, options_.jobs)), todo.size()));
+            static_cast<std::size_t>(std::max(1, options_.jobs)), waiting.size()));
         auto work = [&] {
             for (;;) {
                 const std::size_t i = next.fetch_add(1);
-                if (i >= todo.size()) return;
-                const Sample& s = todo[i];
+                if (i >= waiting.size()) return;
+                const Sample& s = waiting[i];
                 const auto t0 = clock_type::now();
                 std::string error;
                 aero::SourceResult r;
@@ -401,6 +401,24 @@ std::array<Prediction, 6> ControlModel::increment(double alpha, double mach, dou
 aero::Axis ControlModel::control() const {
     return impl_->control;
 }
+
+namespace {
+
+/// The static table's axes and columns, values and sigma zero, for `n` entries.
+TableWithSigma empty_static_table(const StaticPlan& plan, std::size_t n) {
+    TableWithSigma t;
+    t.table.name = "static";
+    t.table.kind = aero::TableKind::static_table;
+    t.table.axes = {{aero::Axis::alpha, plan.alpha},
+                    {aero::Axis::mach, plan.mach},
+                    {aero::Axis::beta, plan.beta}};
+    t.table.columns = {"CL", "CD", "CY", "Cl", "Cm", "Cn"};
+    t.table.values.assign(n * 6, 0.0);
+    t.sigma.assign(n * 6, 0.0);
+    return t;
+}
+
+}  // namespace
 
 // ------------------------------------------------------------------------------- scenarios
 
@@ -570,15 +588,7 @@ TableWithSigma run_static(Runner& run, int batch, ScenarioReport& report,
 
     // The table: Kriging mean and MSE at every entry; sampled entries keep their sampled values
     // (exact data, sigma 0) unless a nugget was estimated (noisy data are smoothed).
-    TableWithSigma t;
-    t.table.name = "static";
-    t.table.kind = aero::TableKind::static_table;
-    t.table.axes = {{aero::Axis::alpha, plan.alpha},
-                    {aero::Axis::mach, plan.mach},
-                    {aero::Axis::beta, plan.beta}};
-    t.table.columns = {"CL", "CD", "CY", "Cl", "Cm", "Cn"};
-    t.table.values.assign(grid.size() * 6, 0.0);
-    t.sigma.assign(grid.size() * 6, 0.0);
+    TableWithSigma t = empty_static_table(plan, grid.size());
     for (int j = 0; j < 6; ++j) {
         const auto& m = impl->models[static_cast<std::size_t>(j)];
         Vector mean, mse;
@@ -974,15 +984,7 @@ aero::AeroDatabase make_database(const Campaign& campaign, const CampaignResult&
 TableWithSigma brute_force_static(const StaticPlan& plan, const aero::AeroSource& source,
                                   const RunOptions& options) {
     const Grid3 grid(plan.alpha, plan.mach, plan.beta);
-    TableWithSigma t;
-    t.table.name = "static";
-    t.table.kind = aero::TableKind::static_table;
-    t.table.axes = {{aero::Axis::alpha, plan.alpha},
-                    {aero::Axis::mach, plan.mach},
-                    {aero::Axis::beta, plan.beta}};
-    t.table.columns = {"CL", "CD", "CY", "Cl", "Cm", "Cn"};
-    t.table.values.assign(grid.size() * 6, 0.0);
-    t.sigma.assign(grid.size() * 6, 0.0);
+    TableWithSigma t = empty_static_table(plan, grid.size());
     std::atomic<std::size_t> next{0};
     std::mutex error_mutex;
     std::string error;
