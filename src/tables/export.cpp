@@ -61,6 +61,42 @@ std::vector<std::size_t> unflatten(const aero::Table& t, std::size_t flat) {
     return idx;
 }
 
+/// The axis values of a table's entry `flat` (axes the table lacks are 0).
+struct EntryPoint {
+    double alpha = 0, mach = 0, beta = 0, elevator = 0, aileron = 0, rudder = 0;
+    /// The deflection of whichever control axis the table has (0 if none).
+    [[nodiscard]] double delta() const { return elevator + aileron + rudder; }
+};
+
+EntryPoint entry_point(const aero::Table& t, std::size_t flat) {
+    const auto idx = unflatten(t, flat);
+    EntryPoint p;
+    for (std::size_t k = 0; k < t.axes.size(); ++k) {
+        const double v = t.axes[k].breakpoints[idx[k]];
+        switch (t.axes[k].axis) {
+            case aero::Axis::alpha:
+                p.alpha = v;
+                break;
+            case aero::Axis::mach:
+                p.mach = v;
+                break;
+            case aero::Axis::beta:
+                p.beta = v;
+                break;
+            case aero::Axis::elevator:
+                p.elevator = v;
+                break;
+            case aero::Axis::aileron:
+                p.aileron = v;
+                break;
+            case aero::Axis::rudder:
+                p.rudder = v;
+                break;
+        }
+    }
+    return p;
+}
+
 /// Wind-axis forces and body moments of the database at q, in the order CL CD Cm CY Cl Cn.
 std::array<double, 6> paper_order(const aero::AeroDatabase& db, const aero::AeroQuery<double>& q) {
     const aero::BodyCoefficients<double> b = db.evaluate(q, aero::Interpolation::multilinear);
@@ -87,27 +123,9 @@ std::string tables_csv(const std::vector<TableWithSigma>& tables) {
         if (t.kind == aero::TableKind::dynamic) continue;
         const std::size_t nc = t.columns.size();
         for (std::size_t e = 0; e < t.n_points(); ++e) {
-            const auto idx = unflatten(t, e);
-            double alpha = 0, mach = 0, beta = 0, delta = 0;
-            for (std::size_t k = 0; k < t.axes.size(); ++k) {
-                const double v = t.axes[k].breakpoints[idx[k]];
-                switch (t.axes[k].axis) {
-                    case aero::Axis::alpha:
-                        alpha = v;
-                        break;
-                    case aero::Axis::mach:
-                        mach = v;
-                        break;
-                    case aero::Axis::beta:
-                        beta = v;
-                        break;
-                    default:
-                        delta = v;
-                        break;
-                }
-            }
-            out += fmt::format("{},{},{},{},{}", t.name, deg(alpha), plain(mach), deg(beta),
-                               deg(delta));
+            const EntryPoint p = entry_point(t, e);
+            out += fmt::format("{},{},{},{},{}", t.name, deg(p.alpha), plain(p.mach), deg(p.beta),
+                               deg(p.delta()));
             for (const char* c : coefficient_names) {
                 const int j = column_index(t, c);
                 out += ',';
@@ -141,13 +159,8 @@ std::string dynamic_csv(const std::vector<TableWithSigma>& tables) {
         out += '\n';
         const std::size_t nc = t.columns.size();
         for (std::size_t e = 0; e < t.n_points(); ++e) {
-            const auto idx = unflatten(t, e);
-            double alpha = 0, mach = 0;
-            for (std::size_t k = 0; k < t.axes.size(); ++k) {
-                if (t.axes[k].axis == aero::Axis::alpha) alpha = t.axes[k].breakpoints[idx[k]];
-                if (t.axes[k].axis == aero::Axis::mach) mach = t.axes[k].breakpoints[idx[k]];
-            }
-            out += fmt::format("{},{}", deg(alpha), plain(mach));
+            const EntryPoint p = entry_point(t, e);
+            out += fmt::format("{},{}", deg(p.alpha), plain(p.mach));
             for (std::size_t j = 0; j < nc; ++j) {
                 out += ',';
                 out += format_exact(t.values[e * nc + j]);
@@ -263,32 +276,9 @@ std::string ceasiom_control_table(const aero::AeroDatabase& db) {
         if (!t) continue;
         const std::size_t nc = t->columns.size();
         for (std::size_t e = 0; e < t->n_points(); ++e) {
-            const auto idx = unflatten(*t, e);
-            double alpha = 0, mach = 0, d[3] = {0, 0, 0};
-            for (std::size_t k = 0; k < t->axes.size(); ++k) {
-                const double v = t->axes[k].breakpoints[idx[k]];
-                switch (t->axes[k].axis) {
-                    case aero::Axis::alpha:
-                        alpha = v;
-                        break;
-                    case aero::Axis::mach:
-                        mach = v;
-                        break;
-                    case aero::Axis::elevator:
-                        d[0] = v;
-                        break;
-                    case aero::Axis::rudder:
-                        d[1] = v;
-                        break;
-                    case aero::Axis::aileron:
-                        d[2] = v;
-                        break;
-                    default:
-                        break;
-                }
-            }
-            out += fmt::format("{:>10} {:>8} {:>10} {:>10} {:>10}", deg(alpha), plain(mach),
-                               deg(d[0]), deg(d[1]), deg(d[2]));
+            const EntryPoint p = entry_point(*t, e);
+            out += fmt::format("{:>10} {:>8} {:>10} {:>10} {:>10}", deg(p.alpha), plain(p.mach),
+                               deg(p.elevator), deg(p.rudder), deg(p.aileron));
             for (const char* c : {"CL", "CD", "Cm", "CY", "Cl", "Cn"}) {
                 const int j = column_index(*t, c);
                 out += fmt::format(" {:>16.9e}",
