@@ -105,12 +105,15 @@ Eigen::Index pair_offset(Eigen::Index n, Eigen::Index i) {
 
 /// The model at given hyper-parameters: Cholesky factor, GLS trend and concentrated likelihood.
 struct Factor {
-    Matrix L;                 ///< lower triangle: Cholesky factor of R = C + nugget I
-    Matrix Ft;                ///< L^-1 F
-    Eigen::LLT<Matrix> gram;  ///< Cholesky of F^T R^-1 F = Ft^T Ft
-    Vector beta;              ///< GLS coefficients (standardised units)
-    Vector rt;                ///< L^-1 (ys - F beta)
-    Vector alpha;             ///< R^-1 (ys - F beta)
+    Matrix L;   ///< lower triangle: Cholesky factor of R = C + nugget I
+    Matrix Ft;  ///< L^-1 F
+    /// Cholesky of F^T R^-1 F = Ft^T Ft; built from an empty matrix so that its status is set
+    /// even without a trend (a default-constructed LLT leaves it uninitialised, and moving it reads
+    /// it).
+    Eigen::LLT<Matrix> gram{Matrix(0, 0)};
+    Vector beta;   ///< GLS coefficients (standardised units)
+    Vector rt;     ///< L^-1 (ys - F beta)
+    Vector alpha;  ///< R^-1 (ys - F beta)
     double sigma2 = 0.0;
     double loglik = 0.0;  ///< concentrated log-likelihood of the standardised outputs
 };
