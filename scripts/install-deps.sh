@@ -17,6 +17,7 @@ packages=(
     libnlopt-cxx-dev     # Kriging likelihood optimisation (surrogate)
     libsqlite3-dev       # sample store of table campaigns (tables)
     coinor-libipopt-dev  # interior-point NLP solver of the optimal-control transcription (optimal)
+    chromium             # headless browser test of the HTML report (report)
 )
 
 missing=()

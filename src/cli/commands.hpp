@@ -28,6 +28,8 @@ void add_vlm(CLI::App& app, Action& action);
 void add_vlm_unsteady(CLI::App& app, Action& action);
 void add_optimise(CLI::App& app, Action& action);
 void add_tables(CLI::App& app, Action& action);
+void add_replay(CLI::App& app, Action& action);
+void add_report(CLI::App& app, Action& action);
 
 /// Options every aircraft command shares: the aircraft file and its loading case.
 struct AircraftOptions {
