@@ -11,4 +11,5 @@ for b in "$build"/bench/*/bench_*; do
     "$b" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
          --benchmark_display_aggregates_only=true 2>/dev/null | grep -E 'median|Benchmark|----' || true
 done
+[ -x bench/manoeuvres/run.sh ] && { bash bench/manoeuvres/run.sh "$build" 3; found=1; }
 [ $found -eq 1 ] || { echo "no benchmark executables under $build/bench"; exit 1; }

@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -52,7 +53,21 @@ struct OptimiseOptions {
     bool json = false;
     bool progress = false;
     int ipopt_print_level = 0;
+    std::vector<std::string> ipopt;  ///< KEY=VALUE IPOPT options
 };
+
+/// IPOPT options given as KEY=VALUE.
+std::vector<std::pair<std::string, std::string>> ipopt_pairs(const std::vector<std::string>& kv) {
+    std::vector<std::pair<std::string, std::string>> r;
+    for (const auto& s : kv) {
+        const auto eq = s.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            throw InputError("--ipopt '" + s + "': expected KEY=VALUE (an IPOPT option)");
+        }
+        r.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+    }
+    return r;
+}
 
 /// A validation problem, its guess and its known optimum (if any).
 struct Case {
@@ -124,6 +139,18 @@ nlohmann::json solution_fields(const optimal::Solution& s, const optimal::Mesh& 
         {"n_variables", s.n_variables},
         {"n_constraints", s.n_constraints},
     };
+    nlohmann::json worst = nlohmann::json::array();
+    for (const auto& v : s.violations) {
+        worst.push_back({{"name", v.name},
+                         {"kind", v.kind},
+                         {"segment", v.segment},
+                         {"node", v.node},
+                         {"time", v.time},
+                         {"value", v.value},
+                         {"violation", v.amount},
+                         {"scaled", v.scaled}});
+    }
+    j["violations"] = worst;
     if (!s.resimulation.done) j["resimulation_message"] = s.resimulation.message;
     return j;
 }
@@ -154,37 +181,53 @@ std::function<bool(const optimal::IterationInfo&)> progress_printer(bool every) 
     };
 }
 
-/// Time histories like the paper's Figs. 10-12 (states, then controls and load factor).
+/// Time histories like the paper's Figs. 10-12 (states, then controls and load factor; angles
+/// in degrees) and the 3-D flight path like its Fig. 9.
 void write_plots(const manoeuvres::Trajectory& t, const std::string& name, const fs::path& out) {
-    const std::vector<double> time = t.column("t_s");
-    auto panels = [&](const std::vector<std::pair<std::string, std::string>>& cols) {
+    const std::vector<double> time = t.column("t");
+    constexpr double deg = 180.0 / 3.14159265358979323846;
+    auto panels = [&](const std::vector<std::tuple<std::string, std::string, double>>& cols) {
         std::vector<Panel> p;
-        for (const auto& [col, label] : cols) p.push_back({label, t.column(col)});
+        for (const auto& [col, label, factor] : cols) {
+            std::vector<double> y = t.column(col);
+            for (double& v : y) v *= factor;
+            p.push_back({label, std::move(y)});
+        }
         return p;
     };
     const std::string states = svg_time_histories(name + ": states", "time [s]", time,
-                                                  panels({{"alpha_deg", "alpha [deg]"},
-                                                          {"beta_deg", "beta [deg]"},
-                                                          {"V_m_s", "V [m/s]"},
-                                                          {"pitch_deg", "pitch angle [deg]"},
-                                                          {"bank_deg", "roll angle [deg]"},
-                                                          {"heading_deg", "yaw angle [deg]"},
-                                                          {"altitude_m", "altitude [m]"},
-                                                          {"load_factor", "load factor nz [-]"}}),
+                                                  panels({{"alpha", "alpha [deg]", deg},
+                                                          {"beta", "beta [deg]", deg},
+                                                          {"V", "V [m/s]", 1.0},
+                                                          {"theta", "pitch angle [deg]", deg},
+                                                          {"phi", "roll angle [deg]", deg},
+                                                          {"psi", "yaw angle [deg]", deg},
+                                                          {"altitude", "altitude [m]", 1.0},
+                                                          {"nz", "load factor nz [-]", 1.0}}),
                                                   2);
     const std::string controls =
         svg_time_histories(name + ": controls", "time [s]", time,
-                           panels({{"elevator_deg", "elevator [deg]"},
-                                   {"aileron_deg", "aileron [deg]"},
-                                   {"rudder_deg", "rudder [deg]"},
-                                   {"throttle", "throttle [-]"},
-                                   {"p_deg_s", "p [deg/s]"},
-                                   {"q_deg_s", "q [deg/s]"},
-                                   {"r_deg_s", "r [deg/s]"},
-                                   {"roll_angle_deg", "integral of p [deg]"}}),
+                           panels({{"elevator", "elevator [deg]", deg},
+                                   {"aileron", "aileron [deg]", deg},
+                                   {"rudder", "rudder [deg]", deg},
+                                   {"throttle", "throttle [-]", 1.0},
+                                   {"p", "p [deg/s]", deg},
+                                   {"q", "q [deg/s]", deg},
+                                   {"r", "r [deg/s]", deg},
+                                   {"roll_angle", "integral of p [deg]", deg}}),
                            2);
+    FlightPath3d fp;
+    fp.north = t.column("x");
+    fp.east = t.column("y");
+    fp.altitude = t.column("altitude");
+    fp.phi = t.column("phi");
+    fp.theta = t.column("theta");
+    fp.psi = t.column("psi");
+    fp.time = time;
+    const std::string path = svg_flight_path_3d(name + ": flight path", fp);
     for (const auto& [file, text] :
-         {std::pair{out / "states.svg", states}, std::pair{out / "controls.svg", controls}}) {
+         {std::pair{out / "states.svg", states}, std::pair{out / "controls.svg", controls},
+          std::pair{out / "flight_path.svg", path}}) {
         core::write_file_atomic(file, text);
     }
 }
@@ -207,6 +250,7 @@ int run_manoeuvre(const OptimiseOptions& o) {
     so.tolerance = o.tolerance_given ? o.tolerance : spec.tolerance;
     so.max_iterations = std::min(o.max_iterations, spec.max_iterations);
     so.print_level = o.ipopt_print_level;
+    so.ipopt_options = ipopt_pairs(o.ipopt);
     so.progress = progress_printer(o.progress);
     const fs::path out = o.out;
     if (!out.empty()) {
@@ -215,13 +259,34 @@ int run_manoeuvre(const OptimiseOptions& o) {
     }
     const manoeuvres::ManoeuvreResult r = manoeuvres::fly(problem, so);
     const optimal::Solution& s = r.solution;
-    const manoeuvres::Trajectory traj = manoeuvres::trajectory(problem, s);
+    manoeuvres::Trajectory traj = manoeuvres::trajectory(problem, s);
+    traj.metadata.insert(traj.metadata.begin() + 1, {"aircraft", o.aircraft});
     const manoeuvres::ConstraintCheck c = manoeuvres::check(problem, traj);
     nlohmann::json j = solution_fields(s, r.mesh, hessian);
     j["manoeuvre"] = spec.name;
     j["aircraft"] = aircraft.name;
+    j["aero_tables"] = o.tables.empty() ? std::string("aircraft file") : o.tables;
     j["mass_kg"] = problem.model().mass.mass;
-    j["nodes"] = spec.nodes;
+    j["nodes"] = s.n_nodes();
+    j["nodes_per_segment"] = spec.nodes;
+    j["mass_case"] = traj.meta("mass_case");
+    j["coarse_iterations"] = r.coarse_iterations;
+    {
+        // phases: names and time spans (the intermediate condition ends the first)
+        const auto names = problem.phase_names();
+        nlohmann::json ph = nlohmann::json::array();
+        const int K = r.mesh.n_segments();
+        for (std::size_t q = 0; q < names.size(); ++q) {
+            double t0 = s.final_time, t1 = s.initial_time;
+            for (int k = 0; k < K; ++k) {
+                if (problem.phase_of_segment(k, K) != static_cast<int>(q)) continue;
+                t0 = std::min(t0, s.breaks[static_cast<std::size_t>(k)]);
+                t1 = std::max(t1, s.breaks[static_cast<std::size_t>(k + 1)]);
+            }
+            ph.push_back({{"name", names[q]}, {"t_start", t0}, {"t_end", t1}});
+        }
+        j["phases"] = ph;
+    }
     j["checks"] = {{"alpha_max_deg", c.alpha_max_deg},
                    {"load_factor_min", c.load_factor_min},
                    {"load_factor_max", c.load_factor_max},
@@ -232,6 +297,9 @@ int run_manoeuvre(const OptimiseOptions& o) {
                    {"final_altitude", c.final_altitude}};
     if (!out.empty()) {
         manoeuvres::write_trajectory_csv(traj, out / "trajectory.csv");
+        manoeuvres::Trajectory dense = manoeuvres::dense_trajectory(problem, s, 0.02);
+        dense.metadata.insert(dense.metadata.begin() + 1, {"aircraft", o.aircraft});
+        manoeuvres::write_trajectory_csv(dense, out / "trajectory_dense.csv");
         if (s.converged()) optimal::write_csv(s, out / "solution.csv");
         write_plots(traj, spec.name, out);
         core::write_file_atomic(out / "summary.json", j.dump(2) + '\n');
@@ -303,6 +371,7 @@ void add_optimise(CLI::App& app, Action& action) {
     cmd->add_option("--ipopt-print-level", o->ipopt_print_level,
                     "IPOPT's own console output, 0 (default) to 12")
         ->check(CLI::Range(0, 12));
+    cmd->add_option("--ipopt", o->ipopt, "Further IPOPT option KEY=VALUE (repeatable)");
     cmd->callback([o, &action, nodes_opt, hessian_opt, tol_opt, problem_opt, aircraft_opt] {
         o->nodes_given = nodes_opt->count() > 0;
         o->hessian_given = hessian_opt->count() > 0;
@@ -322,6 +391,7 @@ void add_optimise(CLI::App& app, Action& action) {
             so.tolerance = o->tolerance;
             so.max_iterations = o->max_iterations;
             so.print_level = o->ipopt_print_level;
+            so.ipopt_options = ipopt_pairs(o->ipopt);
             if (o->progress) {
                 so.progress = [](const optimal::IterationInfo& it) {
                     std::fprintf(stderr,

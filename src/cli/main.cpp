@@ -57,12 +57,8 @@ int main(int argc, char** argv) {
     cli::add_vlm_unsteady(app, action);
     cli::add_optimise(app, action);
     cli::add_tables(app, action);
-#ifdef MANTA_HAVE_REPLAY
     cli::add_replay(app, action);
-#endif
-#ifdef MANTA_HAVE_REPORT
     cli::add_report(app, action);
-#endif
 
     try {
         app.parse(argc, argv);

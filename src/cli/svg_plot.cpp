@@ -196,4 +196,199 @@ std::string svg_xy_panels(const std::string& title, const std::string& x_label,
     return s + "</svg>\n";
 }
 
+namespace {
+
+/// A point in the plot's world axes: e east, n north, h up [m].
+struct World {
+    double e = 0.0, n = 0.0, h = 0.0;
+};
+
+/// Oblique view: azimuth `az` about the vertical (from the east axis), elevation `el` above
+/// the horizon; returns screen coordinates before scaling (right, up).
+struct View {
+    double ca, sa, ce, se;
+    View(double az, double el)
+        : ca(std::cos(az)), sa(std::sin(az)), ce(std::cos(el)), se(std::sin(el)) {}
+    [[nodiscard]] std::pair<double, double> operator()(const World& w) const {
+        const double right = w.e * ca - w.n * sa;
+        const double depth = w.e * sa + w.n * ca;
+        return {right, w.h * ce + depth * se};
+    }
+};
+
+}  // namespace
+
+std::string svg_flight_path_3d(const std::string& title, const FlightPath3d& fp) {
+    const int W = 820, H = 640;
+    std::string s = fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} "
+        "{}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" "
+        "height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"20\" text-anchor=\"middle\" "
+        "font-size=\"14\" font-weight=\"bold\">{}</text>\n",
+        W, H, W, H, W / 2, title);
+    const std::size_t n = fp.north.size();
+    if (n < 2 || fp.east.size() != n || fp.altitude.size() != n) return s + "</svg>\n";
+    auto range = [](const std::vector<double>& v, double& lo, double& hi) {
+        lo = *std::min_element(v.begin(), v.end());
+        hi = *std::max_element(v.begin(), v.end());
+        pad_range(lo, hi);
+    };
+    double n0, n1, e0, e1, h0, h1;
+    range(fp.north, n0, n1);
+    range(fp.east, e0, e1);
+    range(fp.altitude, h0, h1);
+    // equal scale on every axis: widen the smaller extents of the horizontal axes to at least a
+    // quarter of the largest, so that a flat manoeuvre still shows as a volume
+    const double big = std::max({n1 - n0, e1 - e0, h1 - h0});
+    auto widen = [&](double& lo, double& hi) {
+        const double want = 0.25 * big;
+        if (hi - lo < want) {
+            const double c = 0.5 * (lo + hi);
+            lo = c - 0.5 * want;
+            hi = c + 0.5 * want;
+        }
+    };
+    widen(n0, n1);
+    widen(e0, e1);
+    widen(h0, h1);
+    const View view(-0.55, 0.45);
+    // the box corners fix the screen scale
+    double sx0 = 1e300, sx1 = -1e300, sy0 = 1e300, sy1 = -1e300;
+    for (const double e : {e0, e1}) {
+        for (const double nn : {n0, n1}) {
+            for (const double h : {h0, h1}) {
+                const auto [x, y] = view({e, nn, h});
+                sx0 = std::min(sx0, x);
+                sx1 = std::max(sx1, x);
+                sy0 = std::min(sy0, y);
+                sy1 = std::max(sy1, y);
+            }
+        }
+    }
+    const double ml = 90, mr = 90, mt = 50, mb = 70;
+    const double scale = std::min((W - ml - mr) / (sx1 - sx0), (H - mt - mb) / (sy1 - sy0));
+    const double ox = ml + 0.5 * ((W - ml - mr) - scale * (sx1 - sx0));
+    const double oy = mt + 0.5 * ((H - mt - mb) - scale * (sy1 - sy0));
+    auto P = [&](const World& w) {
+        const auto [x, y] = view(w);
+        return std::pair<double, double>{ox + (x - sx0) * scale, oy + (sy1 - y) * scale};
+    };
+    auto line = [&](const World& a, const World& b, const char* style) {
+        const auto [x1, y1] = P(a);
+        const auto [x2, y2] = P(b);
+        return fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" {}/>\n",
+                           x1, y1, x2, y2, style);
+    };
+    // floor grid and the three back walls' edges
+    const char* grid = "stroke=\"#e2e2e2\"";
+    const char* edge = "stroke=\"#666\"";
+    const double es = nice_step(e0, e1, 4), ns = nice_step(n0, n1, 4), hs = nice_step(h0, h1, 4);
+    for (double v = std::ceil(e0 / es) * es; v <= e1; v += es)
+        s += line({v, n0, h0}, {v, n1, h0}, grid);
+    for (double v = std::ceil(n0 / ns) * ns; v <= n1; v += ns)
+        s += line({e0, v, h0}, {e1, v, h0}, grid);
+    for (double v = std::ceil(h0 / hs) * hs; v <= h1; v += hs) {
+        s += line({e0, n1, v}, {e1, n1, v}, grid);
+        s += line({e0, n0, v}, {e0, n1, v}, grid);
+    }
+    s += line({e0, n0, h0}, {e1, n0, h0}, edge);
+    s += line({e0, n0, h0}, {e0, n1, h0}, edge);
+    s += line({e0, n0, h0}, {e0, n0, h1}, edge);
+    s += line({e1, n0, h0}, {e1, n1, h0}, edge);
+    s += line({e0, n1, h0}, {e1, n1, h0}, edge);
+    s += line({e0, n1, h0}, {e0, n1, h1}, edge);
+    // tick labels: east along the front floor edge, north along the right floor edge,
+    // altitude up the left front edge
+    for (double v = std::ceil(e0 / es) * es; v <= e1; v += es) {
+        const auto [x, y] = P({v, n0, h0});
+        s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", x,
+                         y + 16, num(v));
+    }
+    for (double v = std::ceil(n0 / ns) * ns; v <= n1; v += ns) {
+        const auto [x, y] = P({e1, v, h0});
+        s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"start\">{}</text>\n", x + 6,
+                         y + 4, num(v));
+    }
+    for (double v = std::ceil(h0 / hs) * hs; v <= h1; v += hs) {
+        const auto [x, y] = P({e0, n0, v});
+        s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", x - 6,
+                         y + 4, num(v));
+    }
+    {
+        const auto [xa, ya] = P({0.5 * (e0 + e1), n0, h0});
+        s += fmt::format(
+            "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">east y [m]</text>\n", xa,
+            ya + 34);
+        const auto [xb, yb] = P({e1, 0.5 * (n0 + n1), h0});
+        s += fmt::format(
+            "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"start\">north x [m]</text>\n", xb + 46,
+            yb + 4);
+        const auto [xc, yc] = P({e0, n0, h1});
+        s += fmt::format(
+            "<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">altitude [m]</text>\n", xc,
+            yc - 10);
+    }
+    // ground track and the path
+    auto polyline = [&](bool ground, const char* style) {
+        std::string pts;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto [x, y] = P({fp.east[i], fp.north[i], ground ? h0 : fp.altitude[i]});
+            pts += fmt::format("{:.1f},{:.1f} ", x, y);
+        }
+        return fmt::format("<polyline points=\"{}\" fill=\"none\" {}/>\n", pts, style);
+    };
+    s += polyline(true, "stroke=\"#bbb\" stroke-dasharray=\"4 3\"");
+    s += polyline(false, "stroke=\"#1f77b4\" stroke-width=\"1.8\"");
+    // attitude glyphs: body axes from the Euler angles, drawn as wings, fuselage and fin
+    const bool attitude = fp.phi.size() == n && fp.theta.size() == n && fp.psi.size() == n;
+    const int g = attitude ? std::max(fp.glyphs, 2) : 0;
+    const double size = 0.028 * big;
+    for (int k = 0; k < g; ++k) {
+        const std::size_t i = static_cast<std::size_t>(
+            std::lround(static_cast<double>(k) * static_cast<double>(n - 1) / (g - 1)));
+        const double cph = std::cos(fp.phi[i]), sph = std::sin(fp.phi[i]);
+        const double cth = std::cos(fp.theta[i]), sth = std::sin(fp.theta[i]);
+        const double cps = std::cos(fp.psi[i]), sps = std::sin(fp.psi[i]);
+        // columns of the body-to-earth rotation (north, east, down components)
+        const World nose{cth * sps, cth * cps, -(-sth)};
+        const World wing{sph * sth * sps + cph * cps, sph * sth * cps - cph * sps, -(sph * cth)};
+        const World top{-(cph * sth * sps - sph * cps), -(cph * sth * cps + sph * sps), cph * cth};
+        const World c{fp.east[i], fp.north[i], fp.altitude[i]};
+        auto at = [&](double fx, double fy, double fz) {
+            return World{c.e + size * (fx * nose.e + fy * wing.e + fz * top.e),
+                         c.n + size * (fx * nose.n + fy * wing.n + fz * top.n),
+                         c.h + size * (fx * nose.h + fy * wing.h + fz * top.h)};
+        };
+        std::string poly;
+        for (const World& w :
+             {at(1.0, 0.0, 0.0), at(-0.2, 1.0, 0.0), at(-0.6, 0.0, 0.0), at(-0.2, -1.0, 0.0)}) {
+            const auto [x, y] = P(w);
+            poly += fmt::format("{:.1f},{:.1f} ", x, y);
+        }
+        s += fmt::format(
+            "<polygon points=\"{}\" fill=\"#d62728\" fill-opacity=\"0.55\" stroke=\"#8b1a1a\"/>\n",
+            poly);
+        s += line(at(-0.6, 0.0, 0.0), at(-0.7, 0.0, 0.45),
+                  "stroke=\"#8b1a1a\" stroke-width=\"1.5\"");
+        if (!fp.time.empty()) {
+            const auto [x, y] = P(c);
+            s += fmt::format(
+                "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"9\" fill=\"#555\">{:.1f} s</text>\n",
+                x + 8, y - 8, fp.time[i]);
+        }
+    }
+    // start and end markers and a legend line
+    const auto [xs, ys] = P({fp.east.front(), fp.north.front(), fp.altitude.front()});
+    const auto [xe, ye] = P({fp.east.back(), fp.north.back(), fp.altitude.back()});
+    s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"#2ca02c\"/>\n", xs, ys);
+    s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"7\" height=\"7\" fill=\"#000\"/>\n",
+                     xe - 3.5, ye - 3.5);
+    s += fmt::format(
+        "<text x=\"{}\" y=\"{}\" fill=\"#444\">flight path (blue), ground track (dashed), "
+        "aircraft attitude (red glyphs, fin up), start (green dot), end (black square); equal "
+        "scale on all axes</text>\n",
+        20, H - 12);
+    return s + "</svg>\n";
+}
+
 }  // namespace manta::cli

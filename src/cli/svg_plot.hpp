@@ -47,4 +47,18 @@ struct XyPanel {
 [[nodiscard]] std::string svg_xy_panels(const std::string& title, const std::string& x_label,
                                         const std::vector<XyPanel>& panels, int columns = 3);
 
+/// A flight path for `svg_flight_path_3d`: positions in earth axes (x north, y east, altitude up)
+/// [m] and 3-2-1 Euler angles [rad] at each sample.
+struct FlightPath3d {
+    std::vector<double> north, east, altitude;  ///< [m]
+    std::vector<double> phi, theta, psi;        ///< [rad]
+    std::vector<double> time;                   ///< [s], for the glyph labels (may be empty)
+    int glyphs = 10;                            ///< number of attitude glyphs along the path
+};
+
+/// SVG text of a 3-D flight path like Fig. 9 of Ghoreyshi et al.: an oblique (axonometric, equal
+/// scale on the three axes) projection of the path in a box with axes in metres, its ground
+/// track, and aircraft glyphs (wings, nose, fin) drawn at the attitude of evenly spaced samples.
+[[nodiscard]] std::string svg_flight_path_3d(const std::string& title, const FlightPath3d& path);
+
 }  // namespace manta::cli

@@ -137,6 +137,42 @@ ManoeuvreSpec read(const ConfigNode& root) {
         f.finish();
     }
 
+    if (m.has("intermediate")) {
+        ConfigMap f = m.map("intermediate");
+        s.intermediate.present = true;
+        s.intermediate.fraction =
+            f.number_or("fraction", 0.5, NumberSpec::range(0.01, 0.99, "fraction of duration"));
+        s.intermediate.speed = read_target(f, "speed", false, "m/s");
+        s.intermediate.altitude = read_target(f, "altitude", false, "m");
+        s.intermediate.heading_change = read_target(f, "heading_change", true, "rad");
+        s.intermediate.bank = read_target(f, "bank", true, "rad");
+        s.intermediate.pitch = read_target(f, "pitch", true, "rad");
+        s.intermediate.flight_path_angle = read_target(f, "flight_path_angle", true, "rad");
+        f.finish();
+    }
+    if (m.has("phases")) {
+        const ConfigNode ph = m.sequence("phases");
+        const std::size_t want = s.intermediate.present ? 2 : 1;
+        if (ph.size() != want) {
+            ph.fail(
+                fmt::format("lists {} phase name(s)", ph.size()),
+                fmt::format("{} name(s) ({})", want,
+                            s.intermediate.present ? "before and after the intermediate condition"
+                                                   : "no intermediate condition"));
+        }
+        for (std::size_t i = 0; i < ph.size(); ++i) {
+            const std::string name = ph.element(i).to_string();
+            if (name.empty() || name.find_first_of(",\n") != std::string::npos) {
+                ph.element(i).fail("is not a phase name", "a non-empty name without commas");
+            }
+            s.phase_names.push_back(name);
+        }
+    }
+    if (s.phase_names.empty()) {
+        s.phase_names = s.intermediate.present ? std::vector<std::string>{"phase_0", "phase_1"}
+                                               : std::vector<std::string>{"manoeuvre"};
+    }
+
     if (m.has("path")) {
         ConfigMap p = m.map("path");
         const NumberSpec ang = NumberSpec::range(-1.5, 1.5, "rad");

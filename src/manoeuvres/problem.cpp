@@ -183,56 +183,85 @@ ManoeuvreProblem::ManoeuvreProblem(flightdyn::FlightModel model, ManoeuvreSpec s
     if (spec_.final_rates_zero) {
         for (int i : {int(Q::p), int(Q::q), int(Q::r)}) p.final_states[i] = optimal::fixed(0.0);
     }
-    auto add = [&](EventDef::Quantity q, double centre, const std::string& name, double lo,
-                   double hi, double scale) {
-        events_.push_back({q, centre});
-        p.events.push_back({name, lo, hi, scale});
+    // `where` is "final" (events on x(tf)) or "intermediate" (interior events at the junction of
+    // the two phases)
+    if (spec_.intermediate.active()) {
+        if (spec_.segments < 2) spec_.segments = 2;
+        if (spec_.segments % 2 != 0) {
+            throw InputError(fmt::format(
+                "{}: mesh.segments {} with an intermediate condition; expected an even number "
+                "(half of the segments before it, half after)",
+                spec_.file.string(), spec_.segments));
+        }
+    }
+    const int junction = spec_.segments / 2;
+    auto add = [&](const std::string& where, EventDef::Quantity q, double centre,
+                   const std::string& name, double lo, double hi, double scale) {
+        if (where == "final") {
+            events_.push_back({q, centre});
+            p.events.push_back({where + " " + name, lo, hi, scale});
+        } else {
+            interior_events_.push_back({q, centre});
+            p.interior_events.push_back({{where + " " + name, lo, hi, scale}, junction});
+        }
     };
     const double V0 = e[flightdyn::euler::V];
-    if (spec_.speed.active()) {
-        const optimal::Bounds b = resolve(spec_.speed, V0);
-        add(EventDef::Quantity::speed, 0.0, "final speed", b.lower, b.upper, 10.0);
-    }
+    auto add_speed = [&](const std::string& where, const Target& t) {
+        if (!t.active()) return;
+        const optimal::Bounds b = resolve(t, V0);
+        add(where, EventDef::Quantity::speed, 0.0, "speed", b.lower, b.upper, 10.0);
+    };
     /// An angle modulo 2 pi within [lo, hi] (half-width below 90 deg): sin(a - centre) within
     /// [sin(lo - centre), sin(hi - centre)] and cos(a - centre) >= 0.
-    auto add_angle = [&](const Target& t, double entry, EventDef::Quantity qs_,
-                         EventDef::Quantity qc, const std::string& name) {
+    auto add_angle = [&](const std::string& where, const Target& t, double entry, double shift,
+                         EventDef::Quantity qs_, EventDef::Quantity qc, const std::string& name) {
         if (!t.active()) return;
         const optimal::Bounds b = resolve(t, entry);
         const double centre = 0.5 * (b.lower + b.upper);
         const double half = 0.5 * (b.upper - b.lower);
         if (!(half < 0.5 * kPi)) {
-            throw InputError(
-                fmt::format("{}: final {} range is {} deg wide; expected below 180 deg",
-                            spec_.file.string(), name, 2.0 * half / kDeg));
+            throw InputError(fmt::format("{}: {} {} range is {} deg wide; expected below 180 deg",
+                                         spec_.file.string(), where, name, 2.0 * half / kDeg));
         }
-        add(qs_, centre, "final " + name + " (sin)", -std::sin(half), std::sin(half), 0.1);
-        add(qc, centre, "final " + name + " (cos)", 0.0, optimal::kInf, 1.0);
+        add(where, qs_, centre + shift, name + " (sin)", -std::sin(half), std::sin(half), 0.1);
+        add(where, qc, centre + shift, name + " (cos)", 0.0, optimal::kInf, 1.0);
     };
-    add_angle(spec_.heading_change, 0.0, EventDef::Quantity::heading_sin,
-              EventDef::Quantity::heading_cos, "heading");
-    // heading events are relative to the entry heading: shift their centres
-    for (auto& ev : events_) {
-        if (ev.quantity == EventDef::Quantity::heading_sin ||
-            ev.quantity == EventDef::Quantity::heading_cos) {
-            ev.centre += spec_.entry_heading;
-        }
-    }
-    add_angle(spec_.bank, e[flightdyn::euler::phi], EventDef::Quantity::bank_sin,
-              EventDef::Quantity::bank_cos, "bank");
-    auto add_sin = [&](const Target& t, double entry, EventDef::Quantity q,
-                       const std::string& name) {
+    auto add_sin = [&](const std::string& where, const Target& t, double entry,
+                       EventDef::Quantity q, const std::string& name) {
         if (!t.active()) return;
         const optimal::Bounds b = resolve(t, entry);
         const double lo = std::clamp(b.lower, -0.5 * kPi, 0.5 * kPi);
         const double hi = std::clamp(b.upper, -0.5 * kPi, 0.5 * kPi);
-        add(q, 0.0, "final " + name, std::sin(lo), std::sin(hi), 0.1);
+        add(where, q, 0.0, name, std::sin(lo), std::sin(hi), 0.1);
     };
-    add_sin(spec_.pitch, e[flightdyn::euler::theta], EventDef::Quantity::pitch_sin, "pitch");
-    add_sin(spec_.flight_path_angle, spec_.entry_climb, EventDef::Quantity::gamma_sin,
+    // heading targets are changes from the entry heading: their centres shift by it
+    add_speed("final", spec_.speed);
+    add_angle("final", spec_.heading_change, 0.0, spec_.entry_heading,
+              EventDef::Quantity::heading_sin, EventDef::Quantity::heading_cos, "heading");
+    add_angle("final", spec_.bank, e[flightdyn::euler::phi], 0.0, EventDef::Quantity::bank_sin,
+              EventDef::Quantity::bank_cos, "bank");
+    add_sin("final", spec_.pitch, e[flightdyn::euler::theta], EventDef::Quantity::pitch_sin,
+            "pitch");
+    add_sin("final", spec_.flight_path_angle, spec_.entry_climb, EventDef::Quantity::gamma_sin,
             "flight-path angle");
-    add_sin(spec_.sideslip, e[flightdyn::euler::beta], EventDef::Quantity::sideslip_sin,
+    add_sin("final", spec_.sideslip, e[flightdyn::euler::beta], EventDef::Quantity::sideslip_sin,
             "sideslip");
+    if (spec_.intermediate.active()) {
+        const IntermediateSpec& m = spec_.intermediate;
+        const std::string w = "intermediate";
+        add_speed(w, m.speed);
+        if (m.altitude.active()) {
+            const optimal::Bounds b = resolve(m.altitude, h0);
+            add(w, EventDef::Quantity::altitude, 0.0, "altitude", b.lower, b.upper, 100.0);
+        }
+        add_angle(w, m.heading_change, 0.0, spec_.entry_heading, EventDef::Quantity::heading_sin,
+                  EventDef::Quantity::heading_cos, "heading");
+        add_angle(w, m.bank, e[flightdyn::euler::phi], 0.0, EventDef::Quantity::bank_sin,
+                  EventDef::Quantity::bank_cos, "bank");
+        add_sin(w, m.pitch, e[flightdyn::euler::theta], EventDef::Quantity::pitch_sin, "pitch");
+        add_sin(w, m.flight_path_angle, spec_.entry_climb, EventDef::Quantity::gamma_sin,
+                "flight-path angle");
+    }
     p.validate();
 }
 
@@ -312,12 +341,33 @@ std::unique_ptr<optimal::Model> make_model(const ManoeuvreProblem& problem) {
     return optimal::make_model(problem);
 }
 
+namespace {
+
+/// The mesh of a manoeuvre: `segments` segments of `nodes` points; with an intermediate
+/// condition the breaks are free, the junction of the phases starting at `junction_fraction`
+/// and the other breaks spread evenly within each phase.
+optimal::Mesh manoeuvre_mesh(const ManoeuvreSpec& spec, int nodes, double junction_fraction) {
+    optimal::Mesh m = optimal::Mesh::uniform(spec.segments, nodes);
+    if (!spec.intermediate.active()) return m;
+    const int half = spec.segments / 2;
+    for (int k = 0; k <= spec.segments; ++k) {
+        m.breaks[static_cast<std::size_t>(k)] =
+            k <= half ? junction_fraction * k / half
+                      : junction_fraction + (1.0 - junction_fraction) * (k - half) / half;
+    }
+    m.free_breaks = true;
+    m.min_segment_fraction = std::min(0.02, 0.5 / spec.segments);
+    return m;
+}
+
+}  // namespace
+
 ManoeuvreResult fly(const ManoeuvreProblem& problem, const optimal::SolverOptions& options,
                     int nodes) {
     ManoeuvreResult r;
     const ManoeuvreSpec& spec = problem.spec();
     const int n = nodes > 0 ? nodes : spec.nodes;
-    r.mesh = optimal::Mesh::uniform(spec.segments, n);
+    double junction = spec.intermediate.fraction;
     const auto model = make_model(problem);
     optimal::Guess guess = problem.guess();
     double cpu = 0.0, wall = 0.0;
@@ -329,13 +379,20 @@ ManoeuvreResult fly(const ManoeuvreProblem& problem, const optimal::SolverOption
         coarse.tolerance = std::max(options.tolerance, 1e-5);
         coarse.failure_csv.clear();
         const optimal::Solution c = optimal::solve(
-            *model, optimal::Mesh::uniform(spec.segments, spec.coarse_nodes), guess, coarse);
+            *model, manoeuvre_mesh(spec, spec.coarse_nodes, junction), guess, coarse);
         r.coarse_iterations = c.iterations;
         cpu = c.cpu_time;
         wall = c.wall_time;
         its = c.iterations;
-        if (c.converged()) guess = optimal::Guess::from_solution(c);
+        if (c.converged()) {
+            guess = optimal::Guess::from_solution(c);
+            if (spec.intermediate.active()) {
+                const double t0 = c.initial_time, tf = c.final_time;
+                junction = (c.breaks[static_cast<std::size_t>(spec.segments / 2)] - t0) / (tf - t0);
+            }
+        }
     }
+    r.mesh = manoeuvre_mesh(spec, n, junction);
     r.solution = optimal::solve(*model, r.mesh, guess, options);
     r.solution.cpu_time += cpu;
     r.solution.wall_time += wall;
@@ -353,128 +410,221 @@ std::vector<double> Trajectory::column(const std::string& name) const {
     return v;
 }
 
+std::string Trajectory::meta(const std::string& key) const {
+    for (const auto& [k, v] : metadata) {
+        if (k == key) return v;
+    }
+    return {};
+}
+
+namespace {
+
+/// Columns of a trajectory (docs/manoeuvres.md#trajectory-csv): the required ones of the
+/// shared trajectory format first, in order, then the derived ones.
+const std::vector<std::string>& trajectory_columns() {
+    static const std::vector<std::string> c{"t",
+                                            "x",
+                                            "y",
+                                            "z",
+                                            "phi",
+                                            "theta",
+                                            "psi",
+                                            "V",
+                                            "alpha",
+                                            "beta",
+                                            "p",
+                                            "q",
+                                            "r",
+                                            "elevator",
+                                            "aileron",
+                                            "rudder",
+                                            "throttle",
+                                            "phase",
+                                            "mach",
+                                            "altitude",
+                                            "nz",
+                                            "u",
+                                            "v",
+                                            "w",
+                                            "q0",
+                                            "q1",
+                                            "q2",
+                                            "q3",
+                                            "elevator_rate",
+                                            "aileron_rate",
+                                            "rudder_rate",
+                                            "throttle_rate",
+                                            "thrust",
+                                            "CL",
+                                            "CD",
+                                            "CY",
+                                            "Cl",
+                                            "Cm",
+                                            "Cn",
+                                            "CX",
+                                            "CZ",
+                                            "gamma",
+                                            "roll_angle"};
+    return c;
+}
+
+/// Builds rows of a trajectory from states and controls, unwrapping psi along the way.
+class RowBuilder {
+public:
+    explicit RowBuilder(const ManoeuvreProblem& problem) : problem_(problem) {}
+
+    std::vector<double> row(double t, int phase, const Eigen::VectorXd& x,
+                            const Eigen::VectorXd& u) {
+        const auto& m = problem_.model();
+        flightdyn::QuatState<double> qs;
+        for (int j = 0; j < Q::size; ++j) qs[j] = x[j];
+        const flightdyn::Controls<double> c{x[state::elevator], x[state::aileron], x[state::rudder],
+                                            x[state::throttle]};
+        flightdyn::Loads<double> L;
+        (void)flightdyn::quaternion_rhs(m, qs, c, &L);
+        const flightdyn::EulerState<double> es = flightdyn::to_euler_state(qs);
+        const flightdyn::FlightOutputs o = flightdyn::outputs(m, L, es);
+        namespace E = flightdyn::euler;
+        const double psi = es[E::psi];
+        psi_ = first_ ? psi : psi_ + wrap(psi - psi_prev_);
+        first_ = false;
+        psi_prev_ = psi;
+        const double nz = -L.force_body.z() / (m.mass.mass * m.environment.gravity);
+        return {t,
+                x[Q::x],
+                x[Q::y],
+                x[Q::z],
+                es[E::phi],
+                es[E::theta],
+                psi_,
+                L.airspeed,
+                L.alpha,
+                L.beta,
+                x[Q::p],
+                x[Q::q],
+                x[Q::r],
+                c.elevator,
+                c.aileron,
+                c.rudder,
+                c.throttle,
+                static_cast<double>(phase),
+                L.mach,
+                -x[Q::z],
+                nz,
+                x[Q::u],
+                x[Q::v],
+                x[Q::w],
+                x[Q::q0],
+                x[Q::q1],
+                x[Q::q2],
+                x[Q::q3],
+                u[0],
+                u[1],
+                u[2],
+                u[3],
+                L.thrust,
+                o.CL,
+                o.CD,
+                o.CY,
+                o.Cl,
+                o.Cm,
+                o.Cn,
+                L.coefficients.CX,
+                L.coefficients.CZ,
+                o.flight_path_angle,
+                x[state::roll]};
+    }
+
+private:
+    const ManoeuvreProblem& problem_;
+    bool first_ = true;
+    double psi_ = 0.0;
+    double psi_prev_ = 0.0;
+};
+
+/// The metadata lines of a trajectory of `problem` solved in `s`.
+std::vector<std::pair<std::string, std::string>> trajectory_metadata(
+    const ManoeuvreProblem& problem, const optimal::Solution& s) {
+    std::string phases;
+    for (const auto& p : problem.phase_names()) phases += (phases.empty() ? "" : ",") + p;
+    return {{"manoeuvre", problem.spec().name},
+            {"mass_case", problem.spec().mass_case.empty() ? "default" : problem.spec().mass_case},
+            {"phases", phases},
+            {"nodes", std::to_string(s.n_nodes())},
+            {"final_time", fmt::format("{:.10g}", s.final_time)}};
+}
+
+}  // namespace
+
+std::vector<std::string> ManoeuvreProblem::phase_names() const {
+    if (spec_.intermediate.active()) return spec_.phase_names;
+    return {spec_.phase_names.empty() ? std::string("manoeuvre") : spec_.phase_names.front()};
+}
+
+int ManoeuvreProblem::phase_of_segment(int segment, int n_segments) const {
+    if (!spec_.intermediate.active()) return 0;
+    return segment < n_segments / 2 ? 0 : 1;
+}
+
 Trajectory trajectory(const ManoeuvreProblem& problem, const optimal::Solution& s) {
     Trajectory t;
-    t.columns = {"t_s",
-                 "x_m",
-                 "y_m",
-                 "altitude_m",
-                 "q0",
-                 "q1",
-                 "q2",
-                 "q3",
-                 "u_m_s",
-                 "v_m_s",
-                 "w_m_s",
-                 "p_deg_s",
-                 "q_deg_s",
-                 "r_deg_s",
-                 "roll_angle_deg",
-                 "bank_deg",
-                 "pitch_deg",
-                 "heading_deg",
-                 "V_m_s",
-                 "alpha_deg",
-                 "beta_deg",
-                 "gamma_deg",
-                 "mach",
-                 "load_factor",
-                 "elevator_deg",
-                 "aileron_deg",
-                 "rudder_deg",
-                 "throttle",
-                 "elevator_rate_deg_s",
-                 "aileron_rate_deg_s",
-                 "rudder_rate_deg_s",
-                 "throttle_rate_1_s",
-                 "thrust_N",
-                 "CX",
-                 "CY",
-                 "CZ",
-                 "CL",
-                 "CD",
-                 "Cl",
-                 "Cm",
-                 "Cn"};
-    const auto& m = problem.model();
-    double heading_prev = 0.0, heading_unwrapped = 0.0;
-    bool first = true;
-    for (std::size_t k = 0; k < s.segments.size(); ++k) {
-        const auto& seg = s.segments[k];
+    t.columns = trajectory_columns();
+    t.metadata = trajectory_metadata(problem, s);
+    RowBuilder b(problem);
+    const int K = static_cast<int>(s.segments.size());
+    for (int k = 0; k < K; ++k) {
+        const auto& seg = s.segments[static_cast<std::size_t>(k)];
+        const int phase = problem.phase_of_segment(k, K);
         for (Eigen::Index i = (k == 0 ? 0 : 1); i < seg.time.size(); ++i) {
-            const Eigen::VectorXd x = seg.states.row(i).transpose();
-            const Eigen::VectorXd u = seg.controls.row(i).transpose();
-            flightdyn::QuatState<double> qs;
-            for (int j = 0; j < Q::size; ++j) qs[j] = x[j];
-            const flightdyn::Controls<double> c{x[state::elevator], x[state::aileron],
-                                                x[state::rudder], x[state::throttle]};
-            flightdyn::Loads<double> L;
-            (void)flightdyn::quaternion_rhs(m, qs, c, &L);
-            const flightdyn::EulerState<double> es = flightdyn::to_euler_state(qs);
-            const flightdyn::FlightOutputs o = flightdyn::outputs(m, L, es);
-            namespace E = flightdyn::euler;
-            const double psi = es[E::psi];
-            if (first) {
-                heading_unwrapped = psi;
-                first = false;
-            } else {
-                heading_unwrapped += wrap(psi - heading_prev);
-            }
-            heading_prev = psi;
-            const double nz = -L.force_body.z() / (m.mass.mass * m.environment.gravity);
-            t.rows.push_back({seg.time[i],
-                              x[Q::x],
-                              x[Q::y],
-                              -x[Q::z],
-                              x[Q::q0],
-                              x[Q::q1],
-                              x[Q::q2],
-                              x[Q::q3],
-                              x[Q::u],
-                              x[Q::v],
-                              x[Q::w],
-                              x[Q::p] / kDeg,
-                              x[Q::q] / kDeg,
-                              x[Q::r] / kDeg,
-                              x[state::roll] / kDeg,
-                              es[E::phi] / kDeg,
-                              es[E::theta] / kDeg,
-                              heading_unwrapped / kDeg,
-                              L.airspeed,
-                              L.alpha / kDeg,
-                              L.beta / kDeg,
-                              o.flight_path_angle / kDeg,
-                              L.mach,
-                              nz,
-                              c.elevator / kDeg,
-                              c.aileron / kDeg,
-                              c.rudder / kDeg,
-                              c.throttle,
-                              u[0] / kDeg,
-                              u[1] / kDeg,
-                              u[2] / kDeg,
-                              u[3],
-                              L.thrust,
-                              L.coefficients.CX,
-                              L.coefficients.CY,
-                              L.coefficients.CZ,
-                              o.CL,
-                              o.CD,
-                              o.Cl,
-                              o.Cm,
-                              o.Cn});
+            t.rows.push_back(b.row(seg.time[i], phase, seg.states.row(i).transpose(),
+                                   seg.controls.row(i).transpose()));
         }
+    }
+    return t;
+}
+
+Trajectory dense_trajectory(const ManoeuvreProblem& problem, const optimal::Solution& s,
+                            double step) {
+    if (!(step > 0.0)) {
+        throw InputError(fmt::format("dense trajectory step {} s; expected a positive step", step));
+    }
+    Trajectory t;
+    t.columns = trajectory_columns();
+    t.metadata = trajectory_metadata(problem, s);
+    t.metadata.emplace_back("step", fmt::format("{:.10g}", step));
+    RowBuilder b(problem);
+    const double t0 = s.initial_time, tf = s.final_time;
+    const int K = static_cast<int>(s.segments.size());
+    const auto n = static_cast<long>(std::floor((tf - t0) / step * (1.0 + 1e-12)));
+    for (long i = 0; i <= n + 1; ++i) {
+        double ti = t0 + static_cast<double>(i) * step;
+        if (i == n + 1) {
+            if (tf - (t0 + static_cast<double>(n) * step) < 1e-9 * std::max(1.0, tf)) break;
+            ti = tf;  // the final time closes the samples
+        }
+        ti = std::min(ti, tf);
+        int k = 0;
+        while (k + 1 < K && ti >= s.breaks[static_cast<std::size_t>(k + 1)]) ++k;
+        t.rows.push_back(b.row(ti, problem.phase_of_segment(k, K), s.state(ti), s.control(ti)));
     }
     return t;
 }
 
 void write_trajectory_csv(const Trajectory& t, const std::filesystem::path& file) {
     std::ostringstream f;
+    for (const auto& [k, v] : t.metadata) f << "# " << k << ": " << v << '\n';
     for (std::size_t i = 0; i < t.columns.size(); ++i) f << (i ? "," : "") << t.columns[i];
     f << '\n';
+    const auto phase = std::find(t.columns.begin(), t.columns.end(), "phase") - t.columns.begin();
     for (const auto& r : t.rows) {
-        for (std::size_t i = 0; i < r.size(); ++i)
-            f << (i ? "," : "") << fmt::format("{:.10g}", r[i]);
+        for (std::size_t i = 0; i < r.size(); ++i) {
+            f << (i ? "," : "");
+            if (static_cast<std::ptrdiff_t>(i) == phase) {
+                f << static_cast<int>(r[i]);
+            } else {
+                f << fmt::format("{:.10g}", r[i]);
+            }
+        }
         f << '\n';
     }
     core::write_file_atomic(file, f.str());
@@ -482,29 +632,27 @@ void write_trajectory_csv(const Trajectory& t, const std::filesystem::path& file
 
 ConstraintCheck check(const ManoeuvreProblem& problem, const Trajectory& t) {
     ConstraintCheck c;
-    const auto alpha = t.column("alpha_deg");
-    const auto nz = t.column("load_factor");
-    c.alpha_max_deg = *std::max_element(alpha.begin(), alpha.end());
+    const auto alpha = t.column("alpha");
+    const auto nz = t.column("nz");
+    c.alpha_max_deg = *std::max_element(alpha.begin(), alpha.end()) / kDeg;
     c.load_factor_max = *std::max_element(nz.begin(), nz.end());
     c.load_factor_min = *std::min_element(nz.begin(), nz.end());
     const auto& lim = problem.model().limits;
     const std::array<std::pair<std::string, std::array<double, 2>>, 4> ctl{
-        {{"elevator_deg", lim.elevator},
-         {"aileron_deg", lim.aileron},
-         {"rudder_deg", lim.rudder},
+        {{"elevator", lim.elevator},
+         {"aileron", lim.aileron},
+         {"rudder", lim.rudder},
          {"throttle", lim.throttle}}};
     for (const auto& [name, range] : ctl) {
-        const double f = name == "throttle" ? 1.0 : kDeg;
         for (double v : t.column(name)) {
-            c.control_limit_excess =
-                std::max({c.control_limit_excess, range[0] - v * f, v * f - range[1]});
+            c.control_limit_excess = std::max({c.control_limit_excess, range[0] - v, v - range[1]});
         }
     }
-    const auto heading = t.column("heading_deg");
-    c.final_heading_change_deg = wrap((heading.back() - heading.front()) * kDeg) / kDeg;
-    c.final_bank_deg = t.column("bank_deg").back();
-    c.final_speed = t.column("V_m_s").back();
-    c.final_altitude = t.column("altitude_m").back();
+    const auto psi = t.column("psi");
+    c.final_heading_change_deg = wrap(psi.back() - psi.front()) / kDeg;
+    c.final_bank_deg = wrap(t.column("phi").back()) / kDeg;
+    c.final_speed = t.column("V").back();
+    c.final_altitude = t.column("altitude").back();
     return c;
 }
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <limits>
 
@@ -298,7 +299,24 @@ Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
     opt->SetStringValue("nlp_scaling_method",
                         options.automatic_scaling ? "user-scaling" : "gradient-based");
     opt->SetStringValue("linear_solver", options.linear_solver);
-    opt->SetStringValue("mu_strategy", "adaptive");
+    opt->SetStringValue("mu_strategy", options.mu_strategy);
+    opt->SetNumericValue("mu_init", options.mu_init);
+    for (const auto& [key, value] : options.ipopt_options) {
+        bool ok = false;
+        char* end = nullptr;
+        const long i = std::strtol(value.c_str(), &end, 10);
+        if (!value.empty() && *end == '\0') {
+            ok = opt->SetIntegerValue(key, static_cast<Ipopt::Index>(i));
+        } else {
+            const double d = std::strtod(value.c_str(), &end);
+            ok = (!value.empty() && *end == '\0') ? opt->SetNumericValue(key, d)
+                                                  : opt->SetStringValue(key, value);
+        }
+        if (!ok) {
+            throw InputError("IPOPT option '" + key + "' = '" + value +
+                             "' was not accepted; expected an IPOPT option name and a valid value");
+        }
+    }
     Ipopt::ApplicationReturnStatus st = app->Initialize("");
     if (st != Ipopt::Solve_Succeeded) {
         throw NumericalError("IPOPT could not be initialised: " + status_text(st));

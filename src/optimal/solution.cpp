@@ -47,6 +47,14 @@ void ProblemInfo::validate() const {
     for (const auto& c : path)
         check_bounds(who + " path constraint '" + c.name + "'", c.lower, c.upper);
     for (const auto& c : events) check_bounds(who + " event '" + c.name + "'", c.lower, c.upper);
+    for (const auto& e : interior_events) {
+        check_bounds(who + " interior event '" + e.constraint.name + "'", e.constraint.lower,
+                     e.constraint.upper);
+        if (e.junction < 1) {
+            throw InputError(fmt::format("{}: interior event '{}' at junction {}, expected >= 1",
+                                         who, e.constraint.name, e.junction));
+        }
+    }
     check_bounds(who + " initial time", initial_time.lower, initial_time.upper);
     check_bounds(who + " final time", final_time.lower, final_time.upper);
     if (!initial_states.empty() && initial_states.size() != states.size()) {

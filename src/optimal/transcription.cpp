@@ -82,6 +82,28 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
     row += n_points_ * ng_;
     event_row_ = row;
     row += ne_;
+    interior_row_ = row;
+    ni_ = info.n_interior_events();
+    for (int j = 1; j < K; ++j) {
+        Junction jn;
+        jn.index = j;
+        for (int e = 0; e < ni_; ++e) {
+            if (info.interior_events[e].junction == j) jn.events.push_back(e);
+        }
+        if (jn.events.empty()) continue;
+        jn.first_row = row;
+        jn.n = static_cast<int>(jn.events.size());
+        row += jn.n;
+        junctions_.push_back(std::move(jn));
+    }
+    for (const auto& e : info.interior_events) {
+        if (e.junction >= K) {
+            throw InputError("optimal control problem '" + info.name + "': interior event '" +
+                             e.constraint.name + "' at junction " + std::to_string(e.junction) +
+                             " of a mesh of " + std::to_string(K) + " segment(s), expected 1 to " +
+                             std::to_string(K - 1));
+        }
+    }
     order_row_ = row;
     row += (free && K > 2) ? K - 2 : 0;
     n_rows_ = row;
@@ -92,6 +114,7 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
         for (int i = 0; i < seg_[k].n; ++i) node_cols_.push_back(node_columns(k, i));
     }
     boundary_cols_ = boundary_columns();
+    for (auto& jn : junctions_) jn.cols = interior_columns(jn.index);
 
     // Jacobian structure: defect rows hold the constant D part, then the node's local columns.
     for (int k = 0; k < K; ++k) {
@@ -127,6 +150,16 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
         for (const int c : boundary_cols_) {
             jac_row_.push_back(event_row_ + e);
             jac_col_.push_back(c);
+        }
+    }
+    for (auto& jn : junctions_) {
+        jn.jac_start = static_cast<int>(jac_row_.size());
+        for (int e = 0; e < jn.n; ++e) {
+            for (const int c : jn.cols) {
+                if (c < 0) continue;
+                jac_row_.push_back(jn.first_row + e);
+                jac_col_.push_back(c);
+            }
         }
     }
     order_jac_start_ = static_cast<int>(jac_row_.size());
@@ -166,6 +199,20 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
                 boundary_hess_index_[a * nb + b] = entry(boundary_cols_[a], boundary_cols_[b]);
             }
         }
+    }
+
+    for (auto& jn : junctions_) {
+        const int nv = static_cast<int>(jn.cols.size());
+        jn.hess_index.assign(static_cast<std::size_t>(nv * nv), -1);
+        for (int a = 0; a < nv; ++a) {
+            for (int b = 0; b <= a; ++b) {
+                if (jn.cols[a] >= 0 && jn.cols[b] >= 0) {
+                    jn.hess_index[a * nv + b] = entry(jn.cols[a], jn.cols[b]);
+                }
+            }
+        }
+        jn.out.resize(static_cast<std::size_t>(jn.n));
+        jn.jac.resize(static_cast<std::size_t>(jn.n * nv));
     }
 
     node_out_.assign(n_points_, std::vector<double>(n_node_out_));
@@ -226,6 +273,23 @@ std::vector<int> Transcription::boundary_columns() const {
     return cols;
 }
 
+std::vector<int> Transcription::interior_columns(int j) const {
+    std::vector<int> cols;
+    for (int r = 0; r < nx_; ++r) cols.push_back(x_col(seg_[j].state_offset, r));
+    for (int q = 0; q < np_; ++q) cols.push_back(p_col(q));
+    cols.push_back(t0_col());
+    cols.push_back(tf_col());
+    cols.push_back((mesh_.free_breaks && n_segments() > 1) ? break_col(j) : -1);
+    return cols;
+}
+
+void Transcription::gather_interior(int j, const double* z, std::vector<double>& v) const {
+    const std::vector<int> cols = interior_columns(j);
+    v.resize(cols.size());
+    for (std::size_t c = 0; c + 1 < cols.size(); ++c) v[c] = z[cols[c]];
+    v.back() = break_value(z, j);
+}
+
 void Transcription::gather(const std::vector<int>& cols, const double* z,
                            std::vector<double>& v) const {
     v.resize(cols.size());
@@ -251,6 +315,10 @@ void Transcription::update(const double* z, bool need_jacobian) {
             gather(boundary_cols_, z, work_v_);
             model_.boundary_jacobian(work_v_, boundary_out_, boundary_jac_);
         }
+        for (auto& jn : junctions_) {
+            gather_interior(jn.index, z, work_v_);
+            model_.interior_jacobian(jn.index, work_v_, jn.out, jn.jac);
+        }
         jacobian_ok_ = true;
         values_ok_ = true;
     } else if (!values_ok_) {
@@ -264,6 +332,10 @@ void Transcription::update(const double* z, bool need_jacobian) {
         if (n_boundary_out_ > 0) {
             gather(boundary_cols_, z, work_v_);
             model_.boundary_values(work_v_, boundary_out_);
+        }
+        for (auto& jn : junctions_) {
+            gather_interior(jn.index, z, work_v_);
+            model_.interior_values(jn.index, work_v_, jn.out);
         }
         values_ok_ = true;
     }
@@ -319,6 +391,13 @@ void Transcription::bounds(double* x_l, double* x_u, double* g_l, double* g_u) c
     for (int e = 0; e < ne_; ++e) {
         g_l[event_row_ + e] = to_nlp(info.events[e].lower);
         g_u[event_row_ + e] = to_nlp(info.events[e].upper);
+    }
+    for (const auto& jn : junctions_) {
+        for (int e = 0; e < jn.n; ++e) {
+            const Constraint& c = info.interior_events[jn.events[e]].constraint;
+            g_l[jn.first_row + e] = to_nlp(c.lower);
+            g_u[jn.first_row + e] = to_nlp(c.upper);
+        }
     }
     for (int r = order_row_; r < n_rows_; ++r) {
         g_l[r] = mesh_.min_segment_fraction;
@@ -419,6 +498,12 @@ void Transcription::scaling(const double* z0, Eigen::VectorXd& var_scale,
         const Constraint& c = info.events[e];
         row_scale(event_row_ + e) = magnitude(c.scale, c.lower, c.upper, 0.0);
     }
+    for (const auto& jn : junctions_) {
+        for (int e = 0; e < jn.n; ++e) {
+            const Constraint& c = info.interior_events[jn.events[e]].constraint;
+            row_scale(jn.first_row + e) = magnitude(c.scale, c.lower, c.upper, 0.0);
+        }
+    }
     row_scale_ = row_scale;
     if (info.objective_scale > 0.0) {
         obj_scale = info.objective_scale;
@@ -481,6 +566,9 @@ void Transcription::constraints(const double* z, double* g) {
         for (int j = 0; j < ng_; ++j) g[path_row_ + pt * ng_ + j] = node_out_[pt][nx_ + j];
     }
     for (int e = 0; e < ne_; ++e) g[event_row_ + e] = boundary_out_[e];
+    for (const auto& jn : junctions_) {
+        for (int e = 0; e < jn.n; ++e) g[jn.first_row + e] = jn.out[e];
+    }
     for (int m = 0; order_row_ + m < n_rows_; ++m) {
         g[order_row_ + m] = z[break_col(m + 2)] - z[break_col(m + 1)];
     }
@@ -516,6 +604,15 @@ void Transcription::jacobian(const double* z, double* values) {
     for (int e = 0; e < ne_; ++e) {
         for (std::size_t c = 0; c < nb; ++c) {
             values[event_jac_start_ + e * nb + c] = boundary_jac_[e * nb + c];
+        }
+    }
+    for (const auto& jn : junctions_) {
+        const std::size_t nv = jn.cols.size();
+        int idx = jn.jac_start;
+        for (int e = 0; e < jn.n; ++e) {
+            for (std::size_t c = 0; c < nv; ++c) {
+                if (jn.cols[c] >= 0) values[idx++] = jn.jac[e * nv + c];
+            }
         }
     }
     for (int m = 0; order_row_ + m < n_rows_; ++m) {
@@ -577,6 +674,30 @@ void Transcription::hessian(const double* z, double obj_factor, const double* la
             for (int a = 0; a < nb; ++a) {
                 for (int b = 0; b <= a; ++b)
                     values[boundary_hess_index_[a * nb + b]] += H[a * nb + b];
+            }
+        }
+    }
+    interior_hessian(z, lambda, values);
+}
+
+void Transcription::interior_hessian(const double* z, const double* lambda, double* values) {
+    std::vector<double> w, H;
+    for (const auto& jn : junctions_) {
+        w.assign(static_cast<std::size_t>(jn.n), 0.0);
+        bool any = false;
+        for (int e = 0; e < jn.n; ++e) {
+            w[e] = lambda[jn.first_row + e];
+            any = any || w[e] != 0.0;
+        }
+        if (!any) continue;
+        const int nv = static_cast<int>(jn.cols.size());
+        gather_interior(jn.index, z, work_v_);
+        H.resize(static_cast<std::size_t>(nv * nv));
+        model_.interior_hessian(jn.index, work_v_, w, H);
+        for (int a = 0; a < nv; ++a) {
+            for (int b = 0; b <= a; ++b) {
+                const int id = jn.hess_index[a * nv + b];
+                if (id >= 0) values[id] += H[a * nv + b];
             }
         }
     }
@@ -658,10 +779,20 @@ void Transcription::extract(const double* z, const double* lambda, int n_report,
             v.segment = k;
             v.node = pt - seg_[k].point_offset;
             v.time = node_time(k, v.node, z);
-        } else if (row < order_row_) {
+        } else if (row < interior_row_) {
             v.kind = "event";
             v.name = info.events[row - event_row_].name;
             v.time = sol.final_time;
+        } else if (row < order_row_) {
+            v.kind = "interior event";
+            for (const auto& jn : junctions_) {
+                if (row >= jn.first_row && row < jn.first_row + jn.n) {
+                    v.name = info.interior_events[jn.events[row - jn.first_row]].constraint.name;
+                    v.segment = jn.index;
+                    v.node = 0;
+                    v.time = sol.breaks[static_cast<std::size_t>(jn.index)];
+                }
+            }
         } else {
             v.kind = "mesh";
             v.name = "segment order";

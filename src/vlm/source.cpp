@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
+#include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
 #include "manta/core/version.hpp"
 
 namespace manta::vlm {
@@ -29,6 +32,55 @@ struct Hasher {
         num(v.z());
     }
     void str(const std::string& s) { bytes(s.data(), s.size()); }
+};
+
+/// The unsteady lattice as an aero::UnsteadyRun.
+class VlmUnsteadyRun final : public aero::UnsteadyRun {
+public:
+    VlmUnsteadyRun(const Model& model, const Lattice& lattice, const UnsteadyOptions& options,
+                   const aero::Motion& motion, double profile_cd0)
+        : solver_(model, lattice, options), motion_(motion), cd0_(profile_cd0) {
+        convert(solver_.start(motion_));
+    }
+    [[nodiscard]] const aero::UnsteadySample& current() const override { return sample_; }
+    const aero::UnsteadySample& step() override {
+        convert(solver_.step());
+        return sample_;
+    }
+    [[nodiscard]] bool finished() const override { return solver_.finished(); }
+    [[nodiscard]] int n_steps() const override { return solver_.n_steps(); }
+    [[nodiscard]] double dt() const override { return solver_.dt(); }
+    void save(const std::filesystem::path& file) const override {
+        core::write_file_atomic(file, solver_.save_state());
+    }
+    void restore(const std::filesystem::path& file) override {
+        convert(solver_.restore_state(motion_, core::read_file(file)));
+    }
+
+private:
+    void convert(const UnsteadyStep& st) {
+        aero::UnsteadySample& o = sample_;
+        o.index = st.index;
+        o.t = st.t;
+        o.body = st.body;
+        o.wind = {st.CL, st.CD, st.CY};
+        o.alpha = st.alpha;
+        o.beta = st.beta;
+        o.airspeed = st.airspeed;
+        if (cd0_ != 0.0) {
+            // Profile drag along the air velocity (as add_profile_drag for the steady solver).
+            o.wind.CD += cd0_;
+            const double ca = std::cos(st.alpha), sa = std::sin(st.alpha);
+            const double cb = std::cos(st.beta), sb = std::sin(st.beta);
+            o.body.CX -= cd0_ * ca * cb;
+            o.body.CY -= cd0_ * sb;
+            o.body.CZ -= cd0_ * sa * cb;
+        }
+    }
+    UnsteadySolver solver_;
+    aero::Motion motion_;
+    double cd0_ = 0.0;
+    aero::UnsteadySample sample_;
 };
 
 }  // namespace
@@ -123,6 +175,17 @@ aero::SourceResult VlmSource::evaluate(const aero::AeroQuery<double>& q,
     out.CD_induced = r.CD_induced;
     out.CD_profile = r.CD_profile;
     return out;
+}
+
+std::unique_ptr<aero::UnsteadyRun> VlmSource::start_unsteady(
+    const aero::Motion& motion, const aero::UnsteadySettings& settings) const {
+    UnsteadyOptions o = unsteady_options_;
+    if (!o.mach && motion.metadata.mach) o.mach = motion.metadata.mach;
+    if (settings.dt > 0.0) o.dt = settings.dt;
+    const double mach = o.mach ? *o.mach : model_.mach;
+    double cd0 = 0.0;
+    if (const auto v = viscous(mach, settings.conditions.reynolds_per_metre)) cd0 = v->cd0;
+    return std::make_unique<VlmUnsteadyRun>(model_, lattice_, o, motion, cd0);
 }
 
 aero::CoefficientHistory VlmSource::replay(const aero::Motion& motion,

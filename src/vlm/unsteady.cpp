@@ -32,6 +32,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <numbers>
 #include <string>
@@ -1466,6 +1468,153 @@ const UnsteadyStep& UnsteadySolver::step() {
     else
         m.dgdt = (m.gamma - m.gamma1) / m.dt;
     m.loads();
+    return m.current;
+}
+
+namespace {
+
+/// Magic of a saved run state (and its layout version).
+constexpr std::string_view state_magic = "MANTA-UVLM-STATE-1";
+
+/// Appends raw values to a byte string.
+struct Writer {
+    std::string& s;
+    template <class T>
+    void put(const T& v) {
+        s.append(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+    void array(const double* p, Index n) {
+        put(static_cast<std::int64_t>(n));
+        if (n > 0)
+            s.append(reinterpret_cast<const char*>(p),
+                     static_cast<std::size_t>(n) * sizeof(double));
+    }
+};
+
+/// Reads raw values back; InputError on a truncated state.
+struct Reader {
+    std::string_view s;
+    std::size_t pos = 0;
+    void need(std::size_t n) const {
+        if (s.size() - pos < n)
+            throw InputError(fmt::format(
+                "vlm unsteady: saved run state truncated at byte {} of {}; expected {} more bytes",
+                pos, s.size(), n));
+    }
+    template <class T>
+    T get() {
+        need(sizeof(T));
+        T v;
+        std::memcpy(&v, s.data() + pos, sizeof v);
+        pos += sizeof v;
+        return v;
+    }
+    void array(double* p, Index capacity, Index& n) {
+        const auto m = get<std::int64_t>();
+        if (m < 0 || m > capacity)
+            throw InputError(fmt::format(
+                "vlm unsteady: saved run state holds an array of {} values where this run has "
+                "room for {}; expected a state of the same lattice and settings",
+                m, capacity));
+        need(static_cast<std::size_t>(m) * sizeof(double));
+        if (m > 0) std::memcpy(p, s.data() + pos, static_cast<std::size_t>(m) * sizeof(double));
+        pos += static_cast<std::size_t>(m) * sizeof(double);
+        n = static_cast<Index>(m);
+    }
+};
+
+}  // namespace
+
+std::string UnsteadySolver::save_state() const {
+    const Impl& m = *impl_;
+    if (!m.started) throw InputError("vlm unsteady: save_state() before start()");
+    std::string s(state_magic);
+    Writer w{s};
+    w.put(static_cast<std::int64_t>(m.N));
+    w.put(static_cast<std::int64_t>(m.wake_cols));
+    w.put(static_cast<std::int64_t>(m.max_rows));
+    w.put(m.dt);
+    w.put(m.v0);
+    w.put(m.t0);
+    w.put(static_cast<std::int64_t>(m.n_steps));
+    w.put(static_cast<std::int64_t>(m.step));
+    w.put(static_cast<std::int64_t>(m.wake.rows));
+    w.put(static_cast<std::uint8_t>(m.truncated ? 1 : 0));
+    const Index np = static_cast<Index>(m.wake.rows) * m.wake_cols;
+    w.array(m.ax.data(), np);
+    w.array(m.ay.data(), np);
+    w.array(m.az.data(), np);
+    w.array(m.wake.ring.data(), static_cast<Index>(std::max(0, m.wake.rows - 1)) * m.wake_cols);
+    for (const VectorXd* v : {&m.gamma, &m.gamma1, &m.gamma2, &m.dgdt})
+        w.array(v->data(), v->size());
+    return s;
+}
+
+const UnsteadyStep& UnsteadySolver::restore_state(const aero::Motion& motion,
+                                                  std::string_view state) {
+    if (state.substr(0, state_magic.size()) != state_magic)
+        throw InputError(
+            fmt::format("vlm unsteady: saved run state does not start with '{}'", state_magic));
+    start(motion);
+    Impl& m = *impl_;
+    m.started = false;
+    Reader r{state, state_magic.size()};
+    const auto n = r.get<std::int64_t>();
+    const auto cols = r.get<std::int64_t>();
+    const auto rows = r.get<std::int64_t>();
+    const auto dt = r.get<double>();
+    const auto v0 = r.get<double>();
+    const auto t0 = r.get<double>();
+    const auto n_steps = r.get<std::int64_t>();
+    if (n != m.N || cols != m.wake_cols || rows != m.max_rows || dt != m.dt || v0 != m.v0 ||
+        t0 != m.t0 || n_steps != m.n_steps)
+        throw InputError(fmt::format(
+            "vlm unsteady: saved run state of {} panels, {} wake columns, {} wake rows, dt {} s, "
+            "v0 {} m/s, t0 {} s, {} steps; this run has {}, {}, {}, {} s, {} m/s, {} s, {}",
+            n, cols, rows, dt, v0, t0, n_steps, m.N, m.wake_cols, m.max_rows, m.dt, m.v0, m.t0,
+            m.n_steps));
+    const auto step = r.get<std::int64_t>();
+    const auto wake_rows = r.get<std::int64_t>();
+    if (step < 0 || step > m.n_steps || wake_rows < 0 || wake_rows > m.max_rows + 1)
+        throw InputError(fmt::format(
+            "vlm unsteady: saved run state at step {} with {} wake rows; expected 0 to {} steps "
+            "and at most {} rows",
+            step, wake_rows, m.n_steps, m.max_rows + 1));
+    m.step = static_cast<int>(step);
+    m.wake.rows = static_cast<int>(wake_rows);
+    m.truncated = r.get<std::uint8_t>() != 0;
+    Index got = 0;
+    const Index np = static_cast<Index>(m.wake.rows) * m.wake_cols;
+    auto exact = [&](Index want, const char* what) {
+        if (got != want)
+            throw InputError(
+                fmt::format("vlm unsteady: saved run state holds {} values of {}; expected {}", got,
+                            what, want));
+    };
+    r.array(m.ax.data(), m.ax.size(), got);
+    exact(np, "wake x");
+    r.array(m.ay.data(), m.ay.size(), got);
+    exact(np, "wake y");
+    r.array(m.az.data(), m.az.size(), got);
+    exact(np, "wake z");
+    r.array(m.wake.ring.data(), m.wake.ring.size(), got);
+    exact(static_cast<Index>(std::max(0, m.wake.rows - 1)) * m.wake_cols, "wake circulations");
+    for (VectorXd* v : {&m.gamma, &m.gamma1, &m.gamma2, &m.dgdt}) {
+        v->resize(m.N);
+        r.array(v->data(), m.N, got);
+        exact(m.N, "lattice circulations");
+    }
+    if (r.pos != state.size())
+        throw InputError(
+            fmt::format("vlm unsteady: saved run state has {} bytes after its end; expected none",
+                        state.size() - r.pos));
+    // The derived state, as the step that reached it computed it.
+    m.pose_at(m.t0 + m.step * m.dt, m.pose);
+    m.wake_to_geometry(m.pose);
+    m.wake_velocities();
+    m.kinematic_rhs(m.pose);
+    m.loads();
+    m.started = true;
     return m.current;
 }
 

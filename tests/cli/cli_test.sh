@@ -38,7 +38,7 @@ check "manta --help" 0 "$manta" --help
 contains "help lists subcommands" "$work/out.txt" "atmosphere"
 check "manta --version" 0 "$manta" --version
 contains "version text" "$work/out.txt" "manta [0-9]+\.[0-9]+\.[0-9]+"
-for sub in atmosphere "config check" trim modes simulate demo vlm vlm-unsteady vlm-oscillation tables optimise; do
+for sub in atmosphere "config check" trim modes simulate demo vlm vlm-unsteady vlm-oscillation tables optimise replay report; do
     # shellcheck disable=SC2086
     check "manta $sub --help" 0 "$manta" $sub --help
 done
@@ -190,8 +190,28 @@ check "optimise level turn (aircraft)" 0 "$manta" optimise --aircraft "$ranger" 
 json_ok "optimise aircraft json"
 contains "optimise aircraft converged" "$work/out.txt" '"converged": true'
 [ -s "$work/turn/trajectory.csv" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: optimise wrote no trajectory.csv"; ls "$work/turn"; }
+[ -s "$work/turn/trajectory_dense.csv" ] && [ -s "$work/turn/flight_path.svg" ] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL: optimise wrote no trajectory_dense.csv or flight_path.svg"; }
+contains "optimise trajectory header" "$work/turn/trajectory.csv" '^t,x,y,z,phi,theta,psi,V,alpha,beta,p,q,r,elevator,aileron,rudder,throttle,phase,'
+contains "optimise trajectory metadata" "$work/turn/trajectory.csv" '^# phases: manoeuvre$'
+check "optimise --tables" 1 "$manta" optimise --aircraft "$ranger" --manoeuvre "$root/examples/ranger2000/manoeuvres/level_turn.yaml" --tables "$work/tab/database.yaml" --max-iter 5 --out "$work/turn_tab" --json
+contains "optimise --tables used" "$work/turn_tab/summary.json" '"aero_tables": ".*database.yaml"'
 check "optimise needs a problem or an aircraft" 2 "$manta" optimise --nodes 20
 check "optimise too few nodes" 2 "$manta" optimise --problem min-time-to-climb --nodes 1
+
+# demo: the whole pipeline on the level turn (--quick), then a second run that keeps every stage
+check "demo quick" 0 "$manta" demo --quick --out "$work/demo" --jobs 2
+contains "demo report path" "$work/out.txt" 'Report: .*/demo/report.html'
+for f in report.html run.json tables/database.yaml fly/summary.json manoeuvres/level_turn/trajectory_dense.csv replay/level_turn/comparison.csv replay/level_turn/summary.json logs/replay_level_turn.log; do
+    if [ -s "$work/demo/$f" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: demo output $f missing"; fi
+done
+contains "demo run.json complete" "$work/demo/run.json" '"status": "complete"'
+check "demo resumed" 0 "$manta" demo --quick --out "$work/demo" --jobs 2
+contains "demo keeps finished stages" "$work/out.txt" 'optimise level_turn: already done'
+contains "demo keeps the replay" "$work/out.txt" 'replay level_turn: already done'
+check "demo euler fidelity" 2 "$manta" demo --fidelity euler --out "$work/demo_euler"
+contains "demo euler message" "$work/err.txt" 'no Euler CFD source'
+check "demo unknown manoeuvre" 2 "$manta" demo --manoeuvres loop_the_loop --out "$work/demo_bad"
+contains "demo unknown manoeuvre message" "$work/err.txt" "'loop_the_loop' is neither"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -6,6 +6,7 @@
 
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "manta/core/error.hpp"
 #include "manta/manoeuvres/manoeuvre.hpp"
@@ -32,7 +33,23 @@ TEST(ManoeuvreFile, ExamplesParse) {
     EXPECT_EQ(s.speed.kind, Target::Kind::entry);
     EXPECT_NEAR(s.alpha[1], 12.0 * kDeg, 1e-15);
     EXPECT_EQ(s.mass_case, "immelmann");
-    EXPECT_EQ(s.nodes, 60);
+    EXPECT_EQ(s.nodes * s.segments, 60);
+    EXPECT_FALSE(s.intermediate.active());
+    EXPECT_EQ(s.phase_names, std::vector<std::string>{"manoeuvre"});
+}
+
+TEST(ManoeuvreFile, IntermediateConditionAndPhases) {
+    // the Lazy Eight's top of the climb (the paper, sec. V): 90 deg of bank at heading 90 deg
+    const ManoeuvreSpec s = load_manoeuvre(kDir / "lazy_eight.yaml");
+    ASSERT_TRUE(s.intermediate.active());
+    EXPECT_DOUBLE_EQ(s.intermediate.fraction, 0.5);
+    EXPECT_NEAR(s.intermediate.bank.lower, 90.0 * kDeg, 1e-15);
+    EXPECT_NEAR(s.intermediate.heading_change.upper, 90.0 * kDeg, 1e-15);
+    EXPECT_EQ(s.intermediate.flight_path_angle.kind, Target::Kind::range);
+    EXPECT_EQ(s.intermediate.altitude.kind, Target::Kind::entry);
+    EXPECT_FALSE(s.intermediate.speed.active());
+    EXPECT_EQ(s.phase_names, (std::vector<std::string>{"climb", "dive"}));
+    EXPECT_EQ(s.segments, 2);
 }
 
 TEST(ManoeuvreFile, TargetsAndDefaults) {
@@ -88,6 +105,13 @@ TEST(ManoeuvreFile, Errors) {
         "name: x\nentry: {speed: 100, altitude: 1000}\nguess:\n  waypoints:\n"
         "    - {fraction: 0.5}\n    - {fraction: 0.4}\n");
     EXPECT_NE(wp.find("fraction"), std::string::npos) << wp;
+    const std::string phases =
+        error_of("name: x\nentry: {speed: 100, altitude: 1000}\nphases: [a, b]\n");
+    EXPECT_NE(phases.find("phases"), std::string::npos) << phases;
+    const std::string inter = error_of(
+        "name: x\nentry: {speed: 100, altitude: 1000}\nintermediate: {bank_deg: 90, fraction: "
+        "2}\n");
+    EXPECT_NE(inter.find("fraction"), std::string::npos) << inter;
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 /// @file test_paper_manoeuvres_slow.cpp
 /// The paper's three manoeuvres (Ghoreyshi, Badcock, Da Ronch et al., "Simulation of aircraft
 /// manoeuvres based on computational fluid dynamics", AIAA 2010, sec. V, Figs. 9-12) solved as
-/// time-optimal control problems at 60 LGL points: each converges, meets its final conditions
+/// time-optimal control problems at 60 LGL points (3 x 20 hp segments, the Lazy Eight 2 x 30 with
+/// its intermediate condition): each converges, meets its final conditions
 /// and path constraints (alpha <= 12 deg, load factor, Table 3 control limits), and its final
 /// time is plausible against the paper's time axes (Figs. 10-12: 0-60 s for the Lazy Eight and
 /// the Barrel Roll, 0-40 s for the Immelmann) and against a physical lower bound.
@@ -28,6 +29,7 @@ struct Flown {
     optimal::Solution solution;
     ConstraintCheck check;
     double max_altitude = 0.0;  ///< [m]
+    Trajectory trajectory;      ///< at the LGL nodes
 };
 
 Flown fly_file(const std::string& file) {
@@ -40,7 +42,8 @@ Flown fly_file(const std::string& file) {
     f.solution = fly(problem, o).solution;
     const Trajectory t = trajectory(problem, f.solution);
     f.check = check(problem, t);
-    for (double h : t.column("altitude_m")) f.max_altitude = std::max(f.max_altitude, h);
+    for (double h : t.column("altitude")) f.max_altitude = std::max(f.max_altitude, h);
+    f.trajectory = t;
     std::printf("%s: tf %.3f s, %d iterations, %.1f s CPU, violation %.2e, resim %.2e\n",
                 f.spec.name.c_str(), f.solution.final_time, f.solution.iterations,
                 f.solution.cpu_time, f.solution.max_violation,
@@ -80,6 +83,18 @@ TEST(PaperManoeuvres, LazyEight) {
     // the paper's Fig. 10 time axis ends at 60 s.
     EXPECT_GT(f.solution.final_time, 7.8);
     EXPECT_LT(f.solution.final_time, 60.0);
+    // the paper's top of the climb (intermediate condition): the last node of the climb phase is
+    // the junction, at 90 deg of bank, heading 90 deg, level, above the entry
+    const auto phase = f.trajectory.column("phase");
+    std::size_t j = 0;
+    while (j + 1 < phase.size() && phase[j + 1] == 0.0) ++j;
+    ASSERT_LT(j + 1, phase.size()) << "no dive phase";
+    constexpr double deg = 3.14159265358979323846 / 180.0;
+    EXPECT_NEAR(f.trajectory.column("phi")[j] / deg, 90.0, 1e-2);
+    EXPECT_NEAR((f.trajectory.column("psi")[j] - f.trajectory.column("psi")[0]) / deg, 90.0, 1e-2);
+    EXPECT_NEAR(f.trajectory.column("gamma")[j] / deg, 0.0, 1e-2);
+    EXPECT_GE(f.trajectory.column("altitude")[j], f.spec.entry_altitude + 100.0 - 1e-3);
+    EXPECT_NEAR(f.trajectory.column("t")[j], f.solution.breaks[1], 1e-9);
 }
 
 TEST(PaperManoeuvres, BarrelRoll) {

@@ -5,7 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <numbers>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/manoeuvres/manoeuvre.hpp"
@@ -26,6 +32,23 @@ TEST(ManoeuvreSolve, ExactDerivativesOfTheTranscription) {
     const optimal::DerivativeCheck d =
         optimal::check_derivatives(*model, optimal::Mesh::uniform(2, 5), problem.guess());
     EXPECT_LT(d.gradient_error, 1e-6);
+    EXPECT_LT(d.jacobian_error, 1e-5) << "row " << d.worst_row << " col " << d.worst_col;
+    EXPECT_LT(d.hessian_error, 1e-4);
+}
+
+TEST(ManoeuvreSolve, ExactDerivativesWithTheIntermediateCondition) {
+    // the Lazy Eight's interior events at the free junction of its two phases
+    const auto aircraft = aircraft::load_aircraft(kDir / "aircraft.yaml");
+    const ManoeuvreSpec spec = load_manoeuvre(kDir / "manoeuvres/lazy_eight.yaml");
+    const ManoeuvreProblem problem(manoeuvre_model(aircraft, spec), spec);
+    EXPECT_EQ(problem.info().n_interior_events(), 6);  // bank, heading (sin, cos), gamma, altitude
+    EXPECT_EQ(problem.phase_names(), (std::vector<std::string>{"climb", "dive"}));
+    EXPECT_EQ(problem.phase_of_segment(0, 2), 0);
+    EXPECT_EQ(problem.phase_of_segment(1, 2), 1);
+    const auto model = make_model(problem);
+    optimal::Mesh mesh = optimal::Mesh::uniform(2, 5);
+    mesh.free_breaks = true;
+    const optimal::DerivativeCheck d = optimal::check_derivatives(*model, mesh, problem.guess());
     EXPECT_LT(d.jacobian_error, 1e-5) << "row " << d.worst_row << " col " << d.worst_col;
     EXPECT_LT(d.hessian_error, 1e-4);
 }
@@ -76,6 +99,73 @@ TEST(ManoeuvreSolve, LevelTurnConverges) {
     // hundredths of a rad/s after the turn (measured 0.22 on the scaled states).
     ASSERT_TRUE(s.resimulation.done) << s.resimulation.message;
     EXPECT_LT(s.resimulation.max_scaled_error, 0.5);
+
+    // the trajectory files: the shared format (docs/manoeuvres.md#trajectory-csv)
+    const std::vector<std::string> required{
+        "t",    "x", "y", "z", "phi",      "theta",   "psi",    "V",       "alpha",
+        "beta", "p", "q", "r", "elevator", "aileron", "rudder", "throttle"};
+    ASSERT_GE(t.columns.size(), required.size() + 1);
+    for (std::size_t i = 0; i < required.size(); ++i) EXPECT_EQ(t.columns[i], required[i]);
+    EXPECT_EQ(t.columns[required.size()], "phase");
+    EXPECT_EQ(t.rows.size(), 20U);
+    EXPECT_EQ(t.meta("phases"), "manoeuvre");
+    EXPECT_EQ(t.meta("mass_case"), "lazy_eight");
+    // SI and radians: 90 deg of heading is pi/2 rad, altitude = -z
+    EXPECT_NEAR(t.column("psi").back() - t.column("psi").front(), std::numbers::pi / 2, 1e-4);
+    EXPECT_NEAR(t.column("z").front(), -3000.0, 1e-9);
+    EXPECT_NEAR(t.column("altitude").front(), 3000.0, 1e-9);
+    const Trajectory d = dense_trajectory(problem, s, 0.02);
+    EXPECT_EQ(d.columns, t.columns);
+    const auto td = d.column("t");
+    EXPECT_DOUBLE_EQ(td.front(), 0.0);
+    EXPECT_DOUBLE_EQ(td.back(), s.final_time);  // closes with the final time
+    EXPECT_NEAR(td[1] - td[0], 0.02, 1e-12);
+    EXPECT_EQ(td.size(), static_cast<std::size_t>(std::ceil(s.final_time / 0.02 - 1e-9)) + 1);
+    // the interpolant goes through the nodes: the dense samples at the ends match them
+    EXPECT_NEAR(d.column("V").back(), t.column("V").back(), 1e-9);
+    EXPECT_NEAR(d.column("phi").back(), t.column("phi").back(), 1e-9);
+    const auto dir = std::filesystem::temp_directory_path() / "manta_test_trajectory";
+    std::filesystem::create_directories(dir);
+    write_trajectory_csv(d, dir / "trajectory_dense.csv");
+    std::ifstream in(dir / "trajectory_dense.csv");
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "# manoeuvre: level_turn_90");
+    int meta = 1;
+    while (std::getline(in, line) && line.rfind("# ", 0) == 0) ++meta;
+    EXPECT_EQ(meta, 6);  // manoeuvre, mass_case, phases, nodes, final_time, step
+    EXPECT_EQ(line.rfind("t,x,y,z,phi,theta,psi,V,alpha,beta,p,q,r,elevator,aileron,rudder,"
+                         "throttle,phase,",
+                         0),
+              0U)
+        << line;
+    std::getline(in, line);
+    EXPECT_NE(line.find(",0,"), std::string::npos) << "phase written as an integer: " << line;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ManoeuvreSolve, TablesOverrideTheAircraftsAeroModel) {
+    // `manta optimise --tables DB`: a database file replaces the aircraft's aero model. The
+    // aircraft's own database written to a file and read back (exact round trip) is the model
+    // flown, and gives the same optimum.
+    const auto aircraft = aircraft::load_aircraft(kDir / "aircraft.yaml");
+    const ManoeuvreSpec spec = load_manoeuvre(kDir / "manoeuvres/level_turn.yaml");
+    const flightdyn::FlightModel own = manoeuvre_model(aircraft, spec);
+    const auto file = std::filesystem::temp_directory_path() / "manta_test_tables.db";
+    own.aero->write(file);
+    const auto tables = std::make_shared<const aero::AeroDatabase>(aero::AeroDatabase::read(file));
+    std::filesystem::remove(file);
+    const ManoeuvreProblem a(own, spec);
+    const ManoeuvreProblem b(manoeuvre_model(aircraft, spec, tables), spec);
+    EXPECT_EQ(b.model().aero.get(), tables.get());
+    optimal::SolverOptions o;
+    o.tolerance = spec.tolerance;
+    o.resimulate = false;
+    const ManoeuvreResult ra = fly(a, o);
+    const ManoeuvreResult rb = fly(b, o);
+    ASSERT_TRUE(ra.solution.converged());
+    ASSERT_TRUE(rb.solution.converged());
+    EXPECT_NEAR(rb.solution.final_time, ra.solution.final_time, 1e-9);
 }
 
 }  // namespace

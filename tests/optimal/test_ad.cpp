@@ -8,10 +8,12 @@
 
 #include "manta/core/scalar.hpp"
 #include "manta/optimal/ad.hpp"
+#include "manta/optimal/hyper.hpp"
 
 namespace {
 
 using namespace manta::optimal;
+using AdHyper = Hyper<8>;
 
 template <class T>
 T f(const T& x, const T& y) {
@@ -48,6 +50,63 @@ TEST(Ad, FirstAndSecondDerivativesMatchClosedForms) {
     EXPECT_NEAR(b.derivative(0).derivative(0), fxx, 1e-11);
     EXPECT_NEAR(b.derivative(0).derivative(1), fxy, 1e-11);
     EXPECT_NEAR(b.derivative(1).derivative(0), fxy, 1e-11);
+}
+
+/// Every elementary function of the scalars, in three variables, with constants mixed in.
+template <class T>
+T g(const T& x, const T& y, const T& z) {
+    using std::acos;
+    using std::asin;
+    using std::atan;
+    using std::atan2;
+    using std::cbrt;
+    using std::cos;
+    using std::cosh;
+    using std::exp;
+    using std::hypot;
+    using std::log;
+    using std::log10;
+    using std::pow;
+    using std::sin;
+    using std::sinh;
+    using std::sqrt;
+    using std::tan;
+    using std::tanh;
+    T r = sin(x) * cos(y) + tan(0.3 * z) + asin(T(0.4 * x)) + acos(T(0.2 * y)) + atan(x * z);
+    r += atan2(y, x) + atan2(2.0, z) + atan2(x, 1.5) + sinh(0.5 * y) + cosh(0.3 * z) + tanh(x);
+    r += exp(x * y) / z + log(y) * log10(z) + sqrt(x * y * z) + cbrt(z + 1.0) + pow(x, 2.5);
+    r += pow(y, 3) + pow(z, x) + pow(2.0, y) + hypot(x, z) + 3.0 / (x + y) - (2.0 - z) * x;
+    T t = x;
+    t *= y;
+    t /= z;
+    t += 1.0;
+    t -= y;
+    return r + t * t;
+}
+
+TEST(Ad, HyperGivesTheForwardOverForwardHessian) {
+    // Hyper (packed symmetric Hessian) against Fwd<Fwd> on every elementary function
+    const double v[3] = {0.7, 1.3, 0.9};
+    Ad2 a2[3];
+    AdHyper ah[3];
+    for (int i = 0; i < 3; ++i) {
+        a2[i] = Ad2::variable(Ad1::variable(v[i], 3, i), 3, i);
+        ah[i] = AdHyper::variable(v[i], 3, i);
+    }
+    const Ad2 r2 = g(a2[0], a2[1], a2[2]);
+    const AdHyper rh = g(ah[0], ah[1], ah[2]);
+    EXPECT_NEAR(rh.value(), g(v[0], v[1], v[2]), 1e-13);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(rh.gradient(i), r2.derivative(i).value(), 1e-12) << i;
+        for (int j = 0; j < 3; ++j) {
+            EXPECT_NEAR(rh.hessian(i, j), r2.derivative(i).derivative(j), 1e-11) << i << j;
+        }
+    }
+    // a constant mixed with a function of fewer directions keeps zero rows
+    const AdHyper c = AdHyper(2.0) * ah[0] + AdHyper::variable(1.0, 2, 1) * ah[0];
+    EXPECT_DOUBLE_EQ(c.hessian(0, 1), 1.0);
+    EXPECT_DOUBLE_EQ(c.hessian(2, 2), 0.0);
+    EXPECT_DOUBLE_EQ(c.gradient(2), 0.0);
 }
 
 template <class T>

@@ -6,7 +6,7 @@
 /// Variables: X (state at each distinct mesh point; adjacent segments share their common
 /// point), U (control at each collocation point, per segment), p, t0, tf, free interior breaks.
 /// Rows: defects D_k X_k - (h_k/2) f (segment k, node i, state r), path constraints at each
-/// collocation point, events, and the ordering of free breaks.
+/// collocation point, events, interior events (by junction), and the ordering of free breaks.
 
 #include <Eigen/Core>
 #include <string>
@@ -77,8 +77,14 @@ private:
     /// Local variable columns of collocation point (k, i).
     [[nodiscard]] std::vector<int> node_columns(int k, int i) const;
     [[nodiscard]] std::vector<int> boundary_columns() const;
+    /// Interior variable columns of junction j (the break column is -1 when it is fixed).
+    [[nodiscard]] std::vector<int> interior_columns(int j) const;
+    /// Interior variable values of junction j (x, p, t0, tf, break fraction).
+    void gather_interior(int j, const double* z, std::vector<double>& v) const;
     void gather(const std::vector<int>& cols, const double* z, std::vector<double>& v) const;
     void update(const double* z, bool need_jacobian);
+    /// Add the interior events' part of the Hessian of the Lagrangian.
+    void interior_hessian(const double* z, const double* lambda, double* values);
     [[nodiscard]] double node_time(int k, int i, const double* z) const;
 
     const Model& model_;
@@ -90,7 +96,21 @@ private:
     int n_points_ = 0;       // collocation points (sum of segment nodes)
     int u0_ = 0, p0_ = 0, t0_ = 0, b0_ = 0;
     int n_vars_ = 0;
-    int path_row_ = 0, event_row_ = 0, order_row_ = 0, n_rows_ = 0;
+    int path_row_ = 0, event_row_ = 0, interior_row_ = 0, order_row_ = 0, n_rows_ = 0;
+    int ni_ = 0;  // interior events
+
+    /// The interior events of one mesh junction.
+    struct Junction {
+        int index = 0;                 // mesh break index
+        int first_row = 0;             // first of its consecutive rows
+        int n = 0;                     // events there
+        std::vector<int> events;       // indices into ProblemInfo::interior_events
+        std::vector<int> cols;         // interior columns (-1: fixed break)
+        int jac_start = 0;             // first Jacobian entry (n x used columns)
+        std::vector<int> hess_index;   // nv*nv -> entry (-1: upper or unused)
+        std::vector<double> out, jac;  // cache (jac over all nv columns)
+    };
+    std::vector<Junction> junctions_;
 
     // sparsity
     std::vector<int> jac_row_, jac_col_;

@@ -33,6 +33,20 @@ struct GuessWaypoint {
     double speed = 0.0;     ///< [m/s]; 0: the entry speed
 };
 
+/// Conditions at an intermediate point of the manoeuvre (an interior event whose time is free),
+/// splitting it into two phases: e.g. the Lazy Eight's 90 deg of bank at the top of the climb.
+struct IntermediateSpec {
+    bool present = false;      ///< an `intermediate` section was given
+    double fraction = 0.5;     ///< guessed time of the event as a fraction of the duration
+    Target speed;              ///< true airspeed [m/s]
+    Target altitude;           ///< [m]
+    Target heading_change;     ///< psi - psi(t0) [rad], modulo 2 pi
+    Target bank;               ///< phi [rad], modulo 2 pi
+    Target pitch;              ///< theta [rad]
+    Target flight_path_angle;  ///< gamma [rad]
+    [[nodiscard]] bool active() const { return present; }
+};
+
 /// A manoeuvre definition (see the file format in docs/manoeuvres.md).
 struct ManoeuvreSpec {
     std::filesystem::path file;  ///< where it was read from
@@ -64,6 +78,10 @@ struct ManoeuvreSpec {
     Target east_change;            ///< y(tf) - y(t0) [m]
     Target roll_angle;             ///< integral of the body roll rate p over the manoeuvre [rad]
     bool final_rates_zero = true;  ///< p = q = r = 0 at the end (steady exit)
+
+    // --- intermediate condition and phases --------------------------------------------------
+    IntermediateSpec intermediate;         ///< `intermediate` (absent: one phase)
+    std::vector<std::string> phase_names;  ///< `phases` (default: "manoeuvre", or two names)
 
     // --- path constraints ------------------------------------------------------------------
     std::array<double, 2> alpha{-0.10471975511965977, 0.20943951023931953};  ///< [rad]

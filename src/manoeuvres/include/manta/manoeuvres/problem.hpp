@@ -13,6 +13,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "manta/aircraft/aircraft.hpp"
@@ -36,6 +37,7 @@ enum Index : int { roll = flightdyn::quat::size, elevator, aileron, rudder, thro
 struct EventDef {
     enum class Quantity {
         speed,        ///< |v| [m/s]
+        altitude,     ///< -z [m]
         heading_sin,  ///< sin(psi - centre)
         heading_cos,  ///< cos(psi - centre) >= 0
         bank_sin,     ///< sin(phi - centre)
@@ -61,6 +63,12 @@ public:
     /// Entry state (state::size) and controls (4).
     [[nodiscard]] const Eigen::VectorXd& entry_state() const { return x0_; }
     [[nodiscard]] const Eigen::VectorXd& entry_controls() const { return u0_; }
+    /// Names of the manoeuvre's phases (one without an intermediate condition, else two; the
+    /// `phase` column of a trajectory indexes them).
+    [[nodiscard]] std::vector<std::string> phase_names() const;
+    /// Phase of mesh segment `segment` of `n_segments` (the first half of the segments is the
+    /// phase before the intermediate condition).
+    [[nodiscard]] int phase_of_segment(int segment, int n_segments) const;
 
     template <class T>
     void dynamics(std::span<const T> x, std::span<const T> u, std::span<const T> /*p*/,
@@ -77,23 +85,34 @@ public:
 
     /// alpha, beta, load factor nz (body -z force of aerodynamics and thrust over m g).
     template <class T>
-    void path(std::span<const T> x, std::span<const T> /*u*/, std::span<const T> /*p*/,
-              const T& /*t*/, std::span<T> g) const {
+    void path(std::span<const T> x, std::span<const T> u, std::span<const T> p, const T& t,
+              std::span<T> g) const {
+        std::array<T, state::size> xdot;
+        node(x, u, p, t, std::span<T>(xdot), g);
+    }
+
+    /// Dynamics and path constraints in one evaluation of the equations of motion.
+    template <class T>
+    void node(std::span<const T> x, std::span<const T> u, std::span<const T> /*p*/, const T& /*t*/,
+              std::span<T> xdot, std::span<T> g) const {
         using std::asin;
         using std::atan2;
         using std::sqrt;
+        flightdyn::QuatState<T> s;
+        for (int i = 0; i < flightdyn::quat::size; ++i) s[i] = x[i];
+        const flightdyn::Controls<T> c{x[state::elevator], x[state::aileron], x[state::rudder],
+                                       x[state::throttle]};
+        flightdyn::Loads<T> L;
+        const flightdyn::QuatState<T> d = flightdyn::quaternion_rhs(model_, s, c, &L);
+        for (int i = 0; i < flightdyn::quat::size; ++i) xdot[i] = d[i];
+        xdot[state::roll] = x[flightdyn::quat::p];
+        for (int i = 0; i < 4; ++i) xdot[state::elevator + i] = u[i];
         const T& uu = x[flightdyn::quat::u];
         const T& vv = x[flightdyn::quat::v];
         const T& ww = x[flightdyn::quat::w];
         const T V = sqrt(T(uu * uu + vv * vv + ww * ww));
         g[0] = atan2(ww, uu);
         g[1] = asin(T(vv / V));
-        flightdyn::QuatState<T> s;
-        for (int i = 0; i < flightdyn::quat::size; ++i) s[i] = x[i];
-        const flightdyn::Controls<T> c{x[state::elevator], x[state::aileron], x[state::rudder],
-                                       x[state::throttle]};
-        flightdyn::Loads<T> L;
-        (void)flightdyn::quaternion_rhs(model_, s, c, &L);
         g[2] = -L.force_body.z() / (model_.mass.mass * model_.environment.gravity);
     }
 
@@ -112,23 +131,51 @@ public:
     template <class T>
     void events(std::span<const T> /*x0*/, std::span<const T> xf, std::span<const T> /*p*/,
                 const T& /*t0*/, const T& /*tf*/, std::span<T> e) const {
+        evaluate(events_, xf, e);
+    }
+
+    /// The intermediate condition (interior events at the junction of the two phases).
+    template <class T>
+    void interior(int /*junction*/, std::span<const T> x, std::span<const T> /*p*/, const T& /*t*/,
+                  std::span<T> e) const {
+        evaluate(interior_events_, x, e);
+    }
+
+    template <class T>
+    T mayer(std::span<const T> /*x0*/, std::span<const T> /*xf*/, std::span<const T> /*p*/,
+            const T& /*t0*/, const T& tf) const {
+        return tf;
+    }
+
+    /// The initial guess: attitude waypoints of the file (quaternions, sign-aligned, linearly
+    /// interpolated and normalised), speed interpolated, alpha of the entry trim, body rates
+    /// from the quaternion rate, position integrated from the velocity, entry controls.
+    [[nodiscard]] optimal::Guess guess() const;
+
+private:
+    /// Values of the event quantities `defs` at state x.
+    template <class T>
+    static void evaluate(const std::vector<EventDef>& defs, std::span<const T> x, std::span<T> e) {
         using std::sqrt;
         namespace Q = flightdyn::quat;
-        const T &q0 = xf[Q::q0], &q1 = xf[Q::q1], &q2 = xf[Q::q2], &q3 = xf[Q::q3];
+        const T &q0 = x[Q::q0], &q1 = x[Q::q1], &q2 = x[Q::q2], &q3 = x[Q::q3];
         const T n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3;
         const T c11 = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) / n2;
         const T c21 = 2.0 * (q1 * q2 + q0 * q3) / n2;
         const T c31 = 2.0 * (q1 * q3 - q0 * q2) / n2;
         const T c32 = 2.0 * (q2 * q3 + q0 * q1) / n2;
         const T c33 = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) / n2;
-        const T &uu = xf[Q::u], &vv = xf[Q::v], &ww = xf[Q::w];
+        const T &uu = x[Q::u], &vv = x[Q::v], &ww = x[Q::w];
         const T V = sqrt(T(uu * uu + vv * vv + ww * ww));
-        for (std::size_t k = 0; k < events_.size(); ++k) {
-            const EventDef& d = events_[k];
+        for (std::size_t k = 0; k < defs.size(); ++k) {
+            const EventDef& d = defs[k];
             const double sc = std::sin(d.centre), cc = std::cos(d.centre);
             switch (d.quantity) {
                 case EventDef::Quantity::speed:
                     e[k] = V;
+                    break;
+                case EventDef::Quantity::altitude:
+                    e[k] = -x[Q::z];
                     break;
                 case EventDef::Quantity::heading_sin:
                     e[k] = (c21 * cc - c11 * sc) / sqrt(T(c11 * c11 + c21 * c21));
@@ -155,22 +202,11 @@ public:
         }
     }
 
-    template <class T>
-    T mayer(std::span<const T> /*x0*/, std::span<const T> /*xf*/, std::span<const T> /*p*/,
-            const T& /*t0*/, const T& tf) const {
-        return tf;
-    }
-
-    /// The initial guess: attitude waypoints of the file (quaternions, sign-aligned, linearly
-    /// interpolated and normalised), speed interpolated, alpha of the entry trim, body rates
-    /// from the quaternion rate, position integrated from the velocity, entry controls.
-    [[nodiscard]] optimal::Guess guess() const;
-
-private:
     flightdyn::FlightModel model_;
     ManoeuvreSpec spec_;
     optimal::ProblemInfo info_;
     std::vector<EventDef> events_;
+    std::vector<EventDef> interior_events_;  ///< the intermediate condition, if any
     Eigen::VectorXd x0_;
     Eigen::VectorXd u0_;
     std::array<double, 4> rate_inverse_{1.0, 1.0, 1.0, 1.0};
@@ -201,19 +237,29 @@ struct ManoeuvreResult {
 [[nodiscard]] ManoeuvreResult fly(const ManoeuvreProblem& problem,
                                   const optimal::SolverOptions& options, int nodes = 0);
 
-/// A sampled trajectory: one row per node, columns named in `columns` (SI units, angles in
-/// degrees where the name ends in _deg).
+/// A sampled trajectory in the shared trajectory format (docs/manoeuvres.md#trajectory-csv):
+/// one row per sample, columns named in `columns` (SI units and radians; the required columns
+/// t x y z phi theta psi V alpha beta p q r elevator aileron rudder throttle first, then phase,
+/// mach, altitude, nz, u v w, q0..q3, control rates, thrust, coefficients, gamma, roll_angle),
+/// and `# key: value` metadata (manoeuvre, mass_case, phases, nodes, final_time, ...).
 struct Trajectory {
+    std::vector<std::pair<std::string, std::string>> metadata;  ///< written as `# key: value`
     std::vector<std::string> columns;
     std::vector<std::vector<double>> rows;
     /// Column by name (InputError if absent).
     [[nodiscard]] std::vector<double> column(const std::string& name) const;
+    /// Metadata value by key ("" if absent).
+    [[nodiscard]] std::string meta(const std::string& key) const;
 };
-/// Time, states, Euler angles, airspeed, alpha, beta, load factor, Mach, controls, thrust and
-/// the body and wind coefficients at every node of the solution (interface nodes once).
+/// The trajectory at every LGL node of the solution (interface nodes once, with the controls of
+/// the segment they end); psi is unwrapped (continuous).
 [[nodiscard]] Trajectory trajectory(const ManoeuvreProblem& problem,
                                     const optimal::Solution& solution);
-/// Write a trajectory as CSV. IoError on failure.
+/// The trajectory sampled every `step` seconds from t0 by the solution's Lagrange polynomials,
+/// plus the final time. InputError for a step that is not positive.
+[[nodiscard]] Trajectory dense_trajectory(const ManoeuvreProblem& problem,
+                                          const optimal::Solution& solution, double step = 0.02);
+/// Write a trajectory as CSV (metadata lines, header, rows). IoError on failure.
 void write_trajectory_csv(const Trajectory& t, const std::filesystem::path& file);
 
 /// Largest violations of the manoeuvre's own requirements in a trajectory.

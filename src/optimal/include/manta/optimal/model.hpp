@@ -2,8 +2,8 @@
 /// @file model.hpp
 /// `Model`: the type-erased face of a user problem that the transcription calls, one node at a
 /// time. `make_model(problem)` wraps a problem type (problem.hpp) and differentiates it per node
-/// by forward AD (ad.hpp): first derivatives with `Ad1`, exact Hessians with `Ad2`. Nothing is
-/// recorded between calls, so derivatives follow the branches taken at each evaluation.
+/// by forward AD: first derivatives with `Ad1` (ad.hpp), exact Hessians with `AdH` (hyper.hpp).
+/// Nothing is recorded between calls, so derivatives follow the branches taken at each evaluation.
 ///
 /// Local variables of a collocation node, in order: x (nx), u (nu), p (np), t0, tf, then the
 /// segment's start and end fractions s_lo, s_hi when they are decision variables. Outputs of a
@@ -13,6 +13,9 @@
 ///
 /// Boundary variables: x(t0) (nx), x(tf) (nx), p, t0, tf; outputs: the events e (ne), then the
 /// Mayer cost when the problem has one.
+///
+/// Interior variables of mesh junction j: x(t_j) (nx), p, t0, tf, s_j (the break as a fraction of
+/// [t0, tf]; t_j = t0 + (tf - t0) s_j); outputs: the interior events of junction j in order.
 
 #include <algorithm>
 #include <array>
@@ -23,6 +26,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/optimal/ad.hpp"
+#include "manta/optimal/hyper.hpp"
 #include "manta/optimal/problem.hpp"
 
 namespace manta::optimal {
@@ -74,6 +78,21 @@ public:
     virtual void boundary_hessian(std::span<const double> v, std::span<const double> weights,
                                   std::span<double> hess) const = 0;
 
+    /// Interior events of junction j (n_interior_vars() variables, see the file comment).
+    virtual void interior_values(int junction, std::span<const double> v,
+                                 std::span<double> out) const = 0;
+    /// Interior events of junction j and their Jacobian (row-major).
+    virtual void interior_jacobian(int junction, std::span<const double> v, std::span<double> out,
+                                   std::span<double> jac) const = 0;
+    /// Hessian of sum_k weight_k out_k over the interior variables of junction j.
+    virtual void interior_hessian(int junction, std::span<const double> v,
+                                  std::span<const double> weights,
+                                  std::span<double> hess) const = 0;
+
+    /// Number of interior variables of a junction: nx + np + 3.
+    [[nodiscard]] int n_interior_vars() const {
+        return info().n_states() + info().n_parameters() + 3;
+    }
     /// Number of node outputs: nx + ng (+1 with a Lagrange cost).
     [[nodiscard]] int n_node_outputs() const {
         return info().n_states() + info().n_path() + (has_lagrange() ? 1 : 0);
@@ -111,6 +130,22 @@ concept HasMayer = requires(const P& p, std::span<const T> x, const T& t) {
     { p.mayer(x, x, x, t, t) } -> std::convertible_to<T>;
 };
 
+template <class P, class T>
+concept HasNode = requires(const P& p, std::span<const T> x, const T& t, std::span<T> out) {
+    p.node(x, x, x, t, out, out);
+};
+template <class P, class T>
+concept HasInterior = requires(const P& p, std::span<const T> x, const T& t, std::span<T> e) {
+    p.interior(1, x, x, t, e);
+};
+
+}  // namespace detail
+
+/// Second-order AD scalar of the Hessians (value, gradient, packed symmetric Hessian).
+using AdH = Hyper<kMaxDirections>;
+
+namespace detail {
+
 /// Seed n AD variables of type A from plain values.
 template <class A>
 std::vector<A> seed(std::span<const double> v);
@@ -120,6 +155,14 @@ inline std::vector<Ad1> seed<Ad1>(std::span<const double> v) {
     std::vector<Ad1> r;
     r.reserve(v.size());
     for (int i = 0; i < n; ++i) r.push_back(Ad1::variable(v[i], n, i));
+    return r;
+}
+template <>
+inline std::vector<AdH> seed<AdH>(std::span<const double> v) {
+    const int n = static_cast<int>(v.size());
+    std::vector<AdH> r;
+    r.reserve(v.size());
+    for (int i = 0; i < n; ++i) r.push_back(AdH::variable(v[i], n, i));
     return r;
 }
 template <>
@@ -156,6 +199,10 @@ public:
             throw InputError("optimal control problem '" + info_.name +
                              "' declares events but has no events() function");
         }
+        if (info_.n_interior_events() > 0 && !detail::HasInterior<P, double>) {
+            throw InputError("optimal control problem '" + info_.name +
+                             "' declares interior events but has no interior() function");
+        }
     }
 
     [[nodiscard]] const ProblemInfo& info() const override { return info_; }
@@ -188,9 +235,9 @@ public:
     }
     void node_hessian(std::span<const double> v, const NodePlacement& at,
                       std::span<const double> weights, std::span<double> hess) const override {
-        const auto vars = detail::seed<Ad2>(v);
-        std::vector<Ad2> o(weights.size());
-        node_eval<Ad2>(std::span<const Ad2>(vars), at, std::span<Ad2>(o));
+        const auto vars = detail::seed<AdH>(v);
+        std::vector<AdH> o(weights.size());
+        node_eval<AdH>(std::span<const AdH>(vars), at, std::span<AdH>(o));
         extract_second(o, weights, static_cast<int>(v.size()), hess);
     }
 
@@ -206,13 +253,48 @@ public:
     }
     void boundary_hessian(std::span<const double> v, std::span<const double> weights,
                           std::span<double> hess) const override {
-        const auto vars = detail::seed<Ad2>(v);
-        std::vector<Ad2> o(weights.size());
-        boundary_eval<Ad2>(std::span<const Ad2>(vars), std::span<Ad2>(o));
+        const auto vars = detail::seed<AdH>(v);
+        std::vector<AdH> o(weights.size());
+        boundary_eval<AdH>(std::span<const AdH>(vars), std::span<AdH>(o));
+        extract_second(o, weights, static_cast<int>(v.size()), hess);
+    }
+
+    void interior_values(int junction, std::span<const double> v,
+                         std::span<double> out) const override {
+        interior_eval<double>(junction, v, out);
+    }
+    void interior_jacobian(int junction, std::span<const double> v, std::span<double> out,
+                           std::span<double> jac) const override {
+        const auto vars = detail::seed<Ad1>(v);
+        std::vector<Ad1> o(out.size());
+        interior_eval<Ad1>(junction, std::span<const Ad1>(vars), std::span<Ad1>(o));
+        extract_first(o, static_cast<int>(v.size()), out, jac);
+    }
+    void interior_hessian(int junction, std::span<const double> v, std::span<const double> weights,
+                          std::span<double> hess) const override {
+        const auto vars = detail::seed<AdH>(v);
+        std::vector<AdH> o(weights.size());
+        interior_eval<AdH>(junction, std::span<const AdH>(vars), std::span<AdH>(o));
         extract_second(o, weights, static_cast<int>(v.size()), hess);
     }
 
 private:
+    /// Interior events of a junction in scalar type T.
+    template <class T>
+    void interior_eval(int junction, std::span<const T> v, std::span<T> out) const {
+        const std::size_t nx = info_.states.size();
+        const std::size_t np = info_.parameters.size();
+        const auto x = v.subspan(0, nx);
+        const auto p = v.subspan(nx, np);
+        const T& t0 = v[nx + np];
+        const T& tf = v[nx + np + 1];
+        const T& s = v[nx + np + 2];
+        const T t = t0 + (tf - t0) * s;
+        if constexpr (detail::HasInterior<P, T>) {
+            if (!out.empty()) problem_.interior(junction, x, p, t, out);
+        }
+    }
+
     /// Node outputs in scalar type T (see the file comment).
     template <class T>
     void node_eval(std::span<const T> v, const NodePlacement& at, std::span<T> out) const {
@@ -233,11 +315,16 @@ private:
         const T half_h = 0.5 * duration * (s_hi - s_lo);
         const T t = t0 + duration * (s_lo + (s_hi - s_lo) * at.a);
         std::vector<T> xdot(nx);
-        problem_.dynamics(x, u, p, t, std::span<T>(xdot));
-        for (std::size_t r = 0; r < nx; ++r) out[r] = half_h * xdot[r];
-        if constexpr (detail::HasPath<P, T>) {
-            if (ng > 0) problem_.path(x, u, p, t, out.subspan(nx, ng));
+        if constexpr (detail::HasNode<P, T>) {
+            // dynamics and path constraints in one pass (shared intermediate results)
+            problem_.node(x, u, p, t, std::span<T>(xdot), out.subspan(nx, ng));
+        } else {
+            problem_.dynamics(x, u, p, t, std::span<T>(xdot));
+            if constexpr (detail::HasPath<P, T>) {
+                if (ng > 0) problem_.path(x, u, p, t, out.subspan(nx, ng));
+            }
         }
+        for (std::size_t r = 0; r < nx; ++r) out[r] = half_h * xdot[r];
         if constexpr (detail::HasLagrange<P, T>) {
             out[nx + ng] = half_h * at.weight * problem_.lagrange(x, u, p, t);
         }
@@ -269,16 +356,18 @@ private:
             for (int c = 0; c < n; ++c) jac[r * n + c] = o[r].derivative(c);
         }
     }
-    static void extract_second(const std::vector<Ad2>& o, std::span<const double> weights, int n,
+    static void extract_second(const std::vector<AdH>& o, std::span<const double> weights, int n,
                                std::span<double> hess) {
         std::fill(hess.begin(), hess.end(), 0.0);
         for (std::size_t r = 0; r < o.size(); ++r) {
             const double w = weights[r];
             if (w == 0.0) continue;
             for (int i = 0; i < n; ++i) {
-                const Ad1 di = o[r].derivative(i);
-                for (int j = 0; j < n; ++j) hess[i * n + j] += w * di.derivative(j);
+                for (int j = 0; j <= i; ++j) hess[i * n + j] += w * o[r].hessian(i, j);
             }
+        }
+        for (int i = 0; i < n; ++i) {
+            for (int j = i + 1; j < n; ++j) hess[i * n + j] = hess[j * n + i];
         }
     }
 

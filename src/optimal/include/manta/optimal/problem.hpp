@@ -18,6 +18,18 @@
 ///                                    std::span<const T> p, const T& t0, const T& tf,
 ///                                    std::span<T> e) const;                       // optional
 ///     template <class T> T mayer(x0, xf, p, t0, tf) const;                        // optional
+///     template <class T> void interior(int junction, std::span<const T> x,
+///                                      std::span<const T> p, const T& t,
+///                                      std::span<T> e) const;                     // optional
+///
+///     template <class T> void node(x, u, p, t, std::span<T> xdot, std::span<T> g) const;
+///                                                                              // optional
+///
+/// `node`, when present, replaces dynamics + path at the collocation nodes: both in one pass,
+/// for problems whose path constraints reuse the dynamics' intermediate results.
+/// `interior` evaluates the interior events (ProblemInfo::interior_events) of one mesh junction
+/// (the point shared by segments junction-1 and junction; its time is free with free breaks), in
+/// their order of declaration: intermediate conditions such as "90 deg of bank at the top".
 ///
 /// Branch on `core::value_of(x)` (or `optimal::primal`) and compute in T, so derivatives follow
 /// the branch taken at each evaluation.
@@ -59,28 +71,44 @@ struct Constraint {
     double scale = 0.0;  ///< typical magnitude; 0: automatic (from the bounds, else 1)
 };
 
+/// A constraint on the state at an interior mesh point (an interior event): it holds at the
+/// junction of segments `junction - 1` and `junction` (1 <= junction <= K - 1), whose time is a
+/// decision variable when the mesh has free breaks. Segments before and after it form phases.
+struct InteriorEvent {
+    Constraint constraint;  ///< name, bounds, scale
+    int junction = 1;       ///< mesh break index
+};
+
 /// Sizes, names, bounds and scales of a problem. Sizes: at least one state; at most
 /// kMaxDirections local variables per node (states + controls + parameters + 4) and per
 /// boundary function (2 states + parameters + 2).
 struct ProblemInfo {
-    std::string name;                    ///< problem name (reports, CSV)
-    std::vector<Variable> states;        ///< x
-    std::vector<Variable> controls;      ///< u (may be empty)
-    std::vector<Variable> parameters;    ///< p, static (may be empty)
-    std::vector<Constraint> path;        ///< g(x, u, p, t), enforced at every node
-    std::vector<Constraint> events;      ///< e(x(t0), x(tf), p, t0, tf)
-    Bounds initial_time{0.0, 0.0};       ///< t0 (fixed at 0 by default)
-    Bounds final_time{0.0, kInf};        ///< tf (free, positive, by default)
-    double time_scale = 0.0;             ///< typical duration; 0: automatic
-    std::vector<Bounds> initial_states;  ///< bounds on x(t0) (empty: those of `states`)
-    std::vector<Bounds> final_states;    ///< bounds on x(tf) (empty: those of `states`)
-    double objective_scale = 0.0;        ///< typical |objective|; 0: |objective at the guess|
+    std::string name;                            ///< problem name (reports, CSV)
+    std::vector<Variable> states;                ///< x
+    std::vector<Variable> controls;              ///< u (may be empty)
+    std::vector<Variable> parameters;            ///< p, static (may be empty)
+    std::vector<Constraint> path;                ///< g(x, u, p, t), enforced at every node
+    std::vector<Constraint> events;              ///< e(x(t0), x(tf), p, t0, tf)
+    std::vector<InteriorEvent> interior_events;  ///< conditions at interior mesh junctions
+    Bounds initial_time{0.0, 0.0};               ///< t0 (fixed at 0 by default)
+    Bounds final_time{0.0, kInf};                ///< tf (free, positive, by default)
+    double time_scale = 0.0;                     ///< typical duration; 0: automatic
+    std::vector<Bounds> initial_states;          ///< bounds on x(t0) (empty: those of `states`)
+    std::vector<Bounds> final_states;            ///< bounds on x(tf) (empty: those of `states`)
+    double objective_scale = 0.0;  ///< typical |objective|; 0: |objective at the guess|
 
     [[nodiscard]] int n_states() const { return static_cast<int>(states.size()); }
     [[nodiscard]] int n_controls() const { return static_cast<int>(controls.size()); }
     [[nodiscard]] int n_parameters() const { return static_cast<int>(parameters.size()); }
     [[nodiscard]] int n_path() const { return static_cast<int>(path.size()); }
     [[nodiscard]] int n_events() const { return static_cast<int>(events.size()); }
+    [[nodiscard]] int n_interior_events() const { return static_cast<int>(interior_events.size()); }
+    /// Number of interior events at mesh junction j.
+    [[nodiscard]] int n_interior_events_at(int j) const {
+        int n = 0;
+        for (const auto& e : interior_events) n += e.junction == j ? 1 : 0;
+        return n;
+    }
     /// Check sizes, names and bounds; throws InputError naming the offending item.
     void validate() const;
 };

@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "manta/optimal/model.hpp"
@@ -94,9 +95,14 @@ struct SolverOptions {
     double constraint_tolerance = 1e-8;        ///< IPOPT `constr_viol_tol` (unscaled)
     int max_iterations = 3000;                 ///< IPOPT `max_iter`
     double max_cpu_time = 1e6;                 ///< IPOPT `max_cpu_time` [s]
-    int print_level = 0;                  ///< IPOPT console output (0: quiet, 5: IPOPT's default)
-    std::string linear_solver = "mumps";  ///< IPOPT `linear_solver`
-    bool automatic_scaling = true;        ///< scale variables/constraints from bounds and scales
+    int print_level = 0;                   ///< IPOPT console output (0: quiet, 5: IPOPT's default)
+    std::string linear_solver = "mumps";   ///< IPOPT `linear_solver`
+    std::string mu_strategy = "adaptive";  ///< IPOPT `mu_strategy` (adaptive or monotone)
+    double mu_init = 0.1;  ///< IPOPT `mu_init` (initial barrier parameter, monotone strategy)
+    /// Further IPOPT options by name, applied last (value parsed as an integer, else a number,
+    /// else taken as text), e.g. {"mumps_mem_percent", "100"}. InputError for an unknown option.
+    std::vector<std::pair<std::string, std::string>> ipopt_options;
+    bool automatic_scaling = true;  ///< scale variables/constraints from bounds and scales
     /// Called once per IPOPT iteration; return false to stop the solver.
     std::function<bool(const IterationInfo&)> progress;
     /// Re-simulate the controls a posteriori (Solution::resimulation).
@@ -120,7 +126,7 @@ enum class SolveStatus {
 /// A constraint and how far it is from its bounds.
 struct Violation {
     std::string name;     ///< "defect h_ft", path or event name, "segment order"
-    std::string kind;     ///< "defect", "path", "event", "mesh"
+    std::string kind;     ///< "defect", "path", "event", "interior event", "mesh"
     int segment = -1;     ///< segment of a node constraint (-1 for events)
     int node = -1;        ///< node within its segment (-1 for events)
     double time = 0.0;    ///< time of the node (tf for events)

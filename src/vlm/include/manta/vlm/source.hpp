@@ -36,8 +36,17 @@ public:
     /// v0 and Mach metadata unless the options set them). The profile drag is the model's only.
     [[nodiscard]] aero::CoefficientHistory replay(
         const aero::Motion& motion, const aero::ProgressCallback& progress) const override;
-    /// Options of `replay`.
+    /// A steppable unsteady-lattice run along `motion` (UnsteadyOptions of the source, its dt
+    /// replaced by `settings.dt` when that is > 0; the motion's v0 and Mach metadata unless the
+    /// options set them). With a geometry and `settings.conditions.reynolds_per_metre` > 0 the
+    /// viscous profile drag of `evaluate` at the run's Mach is added to every step (as a drag
+    /// along the instantaneous air velocity), so a replay and a table made by `evaluate` mean the
+    /// same thing. save/restore: UnsteadySolver::save_state / restore_state in a file.
+    [[nodiscard]] std::unique_ptr<aero::UnsteadyRun> start_unsteady(
+        const aero::Motion& motion, const aero::UnsteadySettings& settings) const override;
+    /// Options of `replay` and `start_unsteady`.
     void set_unsteady_options(const UnsteadyOptions& o) { unsteady_options_ = o; }
+    [[nodiscard]] const UnsteadyOptions& unsteady_options() const { return unsteady_options_; }
 
     [[nodiscard]] const Model& model() const { return model_; }
     [[nodiscard]] const Lattice& lattice() const { return lattice_; }

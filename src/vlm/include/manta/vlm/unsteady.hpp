@@ -41,6 +41,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "manta/aero/motion.hpp"
@@ -193,6 +195,16 @@ public:
 
     /// Called after the start and after every step; the solver gives the current state.
     using Progress = std::function<void(const UnsteadySolver& solver)>;
+    /// The run state after `start` or a step, as bytes (binary): step index, wake points and
+    /// circulations, the lattice circulations of the last three levels and dGamma/dt, with the
+    /// sizes and time step that identify the run. InputError before `start`.
+    [[nodiscard]] std::string save_state() const;
+    /// `start(motion)`, then the run state replaced by `state` (from `save_state` of a solver
+    /// with the same lattice and options on the same motion): stepping on gives, bit for bit,
+    /// what the uninterrupted run gives. Returns the loads at the restored instant. InputError
+    /// if the state is truncated or belongs to another lattice, time step or wake length.
+    const UnsteadyStep& restore_state(const aero::Motion& motion, std::string_view state);
+
     /// start(motion), then step() to the end, recording every step.
     UnsteadyHistory run(const aero::Motion& motion, const Progress& progress = {});
 

@@ -1,0 +1,214 @@
+/// @file cmd_replay.cpp
+/// `manta replay`: a trajectory replayed through a time-accurate aero source and compared with
+/// the tables (docs/replay.md): motion.csv, comparison.csv, summary.json in --out, checkpoints
+/// in --out/checkpoint while it runs.
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "manta/aero/database.hpp"
+#include "manta/aircraft/aircraft.hpp"
+#include "manta/core/error.hpp"
+#include "manta/replay/replay.hpp"
+#include "manta/replay/trajectory.hpp"
+#include "manta/vlm/source.hpp"
+
+namespace manta::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Lattice of a replay: coarser than the steady default, chosen for speed (docs/replay.md).
+constexpr int replay_n_chord = 8;
+constexpr double replay_strip_width = 0.02;
+
+struct ReplayArgs {
+    std::string trajectory, source = "vlm", aircraft, out, tables;
+    double dt = 0.0;
+    int n_chord = replay_n_chord;
+    double strip_width = replay_strip_width;
+    double wake_length = 10.0;
+    int threads = 0;
+    std::vector<std::string> tolerances;  // NAME=VALUE
+    int checkpoint_steps = 0;
+    double checkpoint_seconds = 30.0;
+    bool restart = false, keep_checkpoint = false, no_viscous = false, json = false;
+};
+
+std::shared_ptr<const aero::AeroDatabase> load_tables(const std::string& tables,
+                                                      const aircraft::AircraftDefinition& def) {
+    if (tables.empty()) return def.aero;
+    fs::path p(tables);
+    if (fs::is_directory(p)) {
+        p /= "database.yaml";
+        if (!fs::exists(p))
+            throw InputError(fmt::format(
+                "--tables {}: a folder without database.yaml; expected a database file or a "
+                "`manta tables --out` folder",
+                tables));
+    }
+    return std::make_shared<const aero::AeroDatabase>(aero::AeroDatabase::read(p));
+}
+
+int run_replay_command(const ReplayArgs& a) {
+    if (a.source == "euler")
+        throw InputError(
+            "--source euler: the Euler source cannot replay yet (it cannot move its mesh); "
+            "expected --source vlm");
+    const aircraft::AircraftDefinition def = aircraft::load_aircraft(a.aircraft);
+    const auto tables = load_tables(a.tables, def);
+    const replay::Trajectory tr = replay::read_trajectory(a.trajectory);
+
+    replay::ReplaySettings s;
+    s.dt = a.dt;
+    s.span = def.reference.span;
+    s.chord = def.reference.chord;
+    s.viscous = !a.no_viscous;
+    s.checkpoint_steps = a.checkpoint_steps;
+    s.checkpoint_seconds = a.checkpoint_seconds;
+    s.restart = a.restart;
+    s.keep_checkpoint = a.keep_checkpoint;
+    s.trajectory_label = a.trajectory;
+    for (const std::string& t : a.tolerances) {
+        const auto eq = t.find('=');
+        bool ok = false;
+        if (eq != std::string::npos)
+            for (std::size_t k = 0; k < 6; ++k)
+                if (t.substr(0, eq) == replay::coefficient_names[k]) {
+                    try {
+                        std::size_t used = 0;
+                        const double v = std::stod(t.substr(eq + 1), &used);
+                        ok = used == t.size() - eq - 1 && v > 0.0;
+                        s.tolerances[k] = v;
+                    } catch (const std::exception&) {
+                        ok = false;
+                    }
+                }
+        if (!ok)
+            throw InputError(fmt::format(
+                "--tolerance {}: expected NAME=VALUE with NAME one of CL CD CY Cl Cm Cn and "
+                "VALUE > 0",
+                t));
+    }
+    s.extra_fingerprint = fmt::format("n_chord={} strip_width={} wake_length={}", a.n_chord,
+                                      a.strip_width, a.wake_length);
+
+    vlm::LatticeDensity density;
+    density.n_chord = a.n_chord;
+    density.strip_width = a.strip_width;
+    const VlmInput in = load_vlm_input(a.aircraft, density);
+    vlm::VlmSource source(in.model, in.geometry);
+    vlm::UnsteadyOptions uo;
+    uo.wake_length = a.wake_length;
+    uo.threads = a.threads;
+    uo.span_loading = false;
+    source.set_unsteady_options(uo);
+
+    // A live status line on a terminal; a line every 10 s otherwise (logs).
+    const bool tty = isatty(fileno(stderr)) != 0;
+    const double every = tty ? 1.0 : 10.0;
+    double last = -every;
+    bool printed = false;
+    s.progress = [&](const replay::ReplayProgress& p) {
+        if (p.elapsed_s - last < every && p.step < p.n_steps) return;
+        last = p.elapsed_s;
+        printed = true;
+        std::fprintf(
+            stderr,
+            "%sreplay %s: step %d/%d  t %.2f s  %.0f%%  %.0f s spent, about %.0f s left%s%s",
+            tty ? "\r" : "", tr.meta("manoeuvre", "trajectory").c_str(), p.step, p.n_steps, p.t,
+            100.0 * p.step / std::max(1, p.n_steps), p.elapsed_s, p.remaining_s,
+            p.resumed_from >= 0 ? fmt::format(" (resumed at step {})", p.resumed_from).c_str() : "",
+            tty ? "   " : "\n");
+    };
+    const replay::ReplayOutcome oc = replay::run_replay(source, *tables, tr, s, a.out);
+    if (tty && printed) std::fprintf(stderr, "\n");
+    const nlohmann::json& j = oc.summary;
+    if (a.json) {
+        print_json(j);
+        return 0;
+    }
+    fmt::print("{} steps of {:.4f} s ({}) through the {} source ({} vortices) in {:.1f} s{}\n",
+               oc.steps, oc.dt, oc.dt_reason, source.name(), source.lattice().size(),
+               j.value("wall_time_s", 0.0),
+               oc.resumed_from >= 0 ? fmt::format(", resumed from step {}", oc.resumed_from) : "");
+    const double mismatch = j["trajectory_check"]["rate_mismatch_max"].get<double>();
+    if (mismatch > 0.05)
+        fmt::print(
+            "warning: the trajectory's Euler angles and its p q r disagree by up to {:.3g} rad/s "
+            "(t = {:.2f} s); the replay follows the angles\n",
+            mismatch, j["trajectory_check"]["t"].get<double>());
+    fmt::print("{:<4} {:>10} {:>10} {:>8}\n", "", "rms diff", "max |diff|", "at t [s]");
+    for (const char* c : replay::coefficient_names) {
+        const auto& o = j["coefficients"][c];
+        fmt::print("{:<4} {:>10.4f} {:>10.4f} {:>8.2f}\n", c, o["rms"].get<double>(),
+                   o["max_abs"].get<double>(), o["t_max"].get<double>());
+    }
+    fmt::print("{} flagged interval(s), {} step(s) over tolerance\n", j["flags"].size(),
+               j.value("flagged_steps", 0));
+    fmt::print("wrote {}, {}, {}\n", oc.motion_file.string(), oc.comparison_file.string(),
+               oc.summary_file.string());
+    return 0;
+}
+
+}  // namespace
+
+void add_replay(CLI::App& app, Action& action) {
+    auto* cmd = app.add_subcommand(
+        "replay",
+        "Replay a trajectory through a time-accurate aero source and compare it with the tables\n"
+        "(docs/replay.md): motion.csv, comparison.csv and summary.json in --out. A killed replay\n"
+        "run again with the same command continues from its last checkpoint.");
+    auto a = std::make_shared<ReplayArgs>();
+    cmd->add_option("--trajectory", a->trajectory,
+                    "Trajectory CSV (docs/formats.md#trajectory-csv; manta optimise/simulate)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--source", a->source, "Time-accurate source: vlm (euler: not yet)")
+        ->check(CLI::IsMember({"vlm", "euler"}));
+    cmd->add_option("--aircraft", a->aircraft, "Aircraft file (geometry, reference, aero model)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--out", a->out, "Output folder")->required();
+    cmd->add_option("--tables", a->tables,
+                    "Aero database (database.yaml or a `manta tables` folder; default: the "
+                    "aircraft file's aero model)")
+        ->check(CLI::ExistingPath);
+    cmd->add_option("--dt", a->dt, "Time step [s] (default: from the manoeuvre's time scales)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--n-chord", a->n_chord,
+                    fmt::format("Chordwise vortices per strip (default {})", replay_n_chord))
+        ->check(CLI::Range(1, 100));
+    cmd->add_option("--strip-width", a->strip_width,
+                    fmt::format("Strip width / span (default {})", replay_strip_width))
+        ->check(CLI::Range(1e-4, 0.5));
+    cmd->add_option("--wake-length", a->wake_length, "Wake kept [reference chords] (default 10)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--threads", a->threads, "Worker threads (default 0: all)")
+        ->check(CLI::Range(0, 256));
+    cmd->add_option("--tolerance", a->tolerances,
+                    "Flag tolerance NAME=VALUE (CL CD CY Cl Cm Cn; defaults in docs/replay.md)");
+    cmd->add_option("--checkpoint-steps", a->checkpoint_steps,
+                    "Checkpoint every N steps (default 0: by time only)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--checkpoint-seconds", a->checkpoint_seconds,
+                    "Checkpoint every T seconds of wall time (default 30; 0: never by time)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--restart", a->restart, "Discard a checkpoint in --out and start afresh");
+    cmd->add_flag("--keep-checkpoint", a->keep_checkpoint, "Keep --out/checkpoint when done");
+    cmd->add_flag("--no-viscous", a->no_viscous, "Leave out the viscous drag estimate");
+    cmd->add_flag("--json", a->json, "Print summary.json on stdout");
+    cmd->callback([a, &action] { action = [a]() -> int { return run_replay_command(*a); }; });
+}
+
+}  // namespace manta::cli

@@ -1,0 +1,66 @@
+/// @file cmd_report.cpp
+/// `manta report RUN_DIR --html FILE [--figures DIR] [--png] [--json]`: the self-contained
+/// HTML report of a run directory (docs/report.md).
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "manta/report/report.hpp"
+
+namespace manta::cli {
+
+void add_report(CLI::App& app, Action& action) {
+    auto* cmd = app.add_subcommand(
+        "report",
+        "Self-contained HTML report of a run directory (or of one tables, optimise or "
+        "replay output directory)");
+    auto o = std::make_shared<report::ReportOptions>();
+    auto run_dir = std::make_shared<std::string>();
+    auto html = std::make_shared<std::string>();
+    auto figures = std::make_shared<std::string>();
+    auto png = std::make_shared<bool>(false);
+    auto json = std::make_shared<bool>(false);
+    cmd->add_option("RUN_DIR", *run_dir,
+                    "Run directory (manta demo --out), or a tables, optimise "
+                    "or replay output directory")
+        ->required();
+    cmd->add_option("--html", *html, "Write the report to this HTML file")->required();
+    cmd->add_option("--figures", *figures,
+                    "Also write every figure as SVG and its curves as CSV into this folder");
+    cmd->add_flag("--png", *png,
+                  "With --figures: also render each SVG as PNG with headless chromium (a few "
+                  "seconds per figure; skipped with a note when chromium is absent)");
+    cmd->add_option("--chromium", o->chromium,
+                    "Browser executable for the PNGs (default: chromium on PATH)");
+    cmd->add_flag("--json", *json, "Print one JSON object: parts shown, parts missing, files");
+    cmd->callback([=, &action] {
+        action = [=]() -> int {
+            report::ReportOptions opt = *o;
+            opt.run_dir = *run_dir;
+            opt.html = *html;
+            if (!figures->empty()) opt.figures_dir = *figures;
+            opt.png = *png;
+            const report::ReportResult r = report::make_report(opt);
+            if (*json) {
+                print_json(r.to_json());
+            } else {
+                fmt::print("report of {} ({} layout): {} plots, {} bytes\n", *run_dir, r.layout,
+                           r.n_figures, r.html_bytes);
+                fmt::print("  shown: {}\n", fmt::join(r.parts, ", "));
+                if (!r.missing.empty()) fmt::print("  absent: {}\n", fmt::join(r.missing, ", "));
+                if (opt.figures_dir)
+                    fmt::print("  figures: {} files in {}\n", r.files.size() - 1,
+                               opt.figures_dir->string());
+                if (!r.png_note.empty()) fmt::print("  {}\n", r.png_note);
+                fmt::print("  wrote {}\n", *html);
+            }
+            return 0;
+        };
+    });
+}
+
+}  // namespace manta::cli

@@ -1,0 +1,276 @@
+/// @file motion_builder.cpp
+/// Motion file of a replay from a trajectory (motion_builder.hpp, docs/replay.md).
+
+#include "manta/replay/motion_builder.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "manta/core/error.hpp"
+#include "manta/flightdyn/atmosphere.hpp"
+
+namespace manta::replay {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+/// `a` shifted by a multiple of 2 pi to lie nearest `ref`.
+double nearest(double a, double ref) {
+    return a + 2.0 * pi * std::round((ref - a) / (2.0 * pi));
+}
+
+/// Principal 3-2-1 triple of body_from_frame.
+std::array<double, 3> principal(const Matrix3d& C) {
+    const double theta = std::asin(std::clamp(-C(0, 2), -1.0, 1.0));
+    return {std::atan2(C(1, 2), C(2, 2)), theta, std::atan2(C(0, 1), C(0, 0))};
+}
+
+/// Of the two equivalent triples of `e`, each angle shifted by 2 pi k, the one nearest `prev`.
+std::array<double, 3> nearest_triple(const std::array<double, 3>& e,
+                                     const std::array<double, 3>& prev) {
+    const std::array<std::array<double, 3>, 2> cand{
+        std::array<double, 3>{e[0], e[1], e[2]},
+        std::array<double, 3>{e[0] + pi, pi - e[1], e[2] + pi}};
+    std::array<double, 3> best{};
+    double best_d = std::numeric_limits<double>::infinity();
+    for (const auto& c : cand) {
+        std::array<double, 3> s{};
+        double d = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) {
+            s[k] = nearest(c[k], prev[k]);
+            d += (s[k] - prev[k]) * (s[k] - prev[k]);
+        }
+        if (d < best_d) {
+            best_d = d;
+            best = s;
+        }
+    }
+    return best;
+}
+
+/// Mach of every trajectory row: its column, else V / a(-z) of the US 1976 atmosphere.
+std::vector<double> mach_column(const Trajectory& tr) {
+    if (!tr.mach.empty()) return tr.mach;
+    std::vector<double> m(tr.size());
+    for (std::size_t i = 0; i < tr.size(); ++i) {
+        const double h = -tr.position[2][i];
+        if (!(h >= -5000.0 && h <= 80000.0))
+            throw InputError(
+                fmt::format("{}:{}, column 'z': altitude {} m; expected -5000 to 80000 m (US 1976 "
+                            "atmosphere for the Mach number; or give a 'mach' column)",
+                            tr.source, tr.line[i], h));
+        m[i] = tr.V[i] / flightdyn::us1976(h).speed_of_sound;
+    }
+    return m;
+}
+
+Vector3d air_velocity_earth(const aero::MotionState& s) {
+    // modes: elevator aileron rudder V alpha beta mach
+    const double V = s.modes[3], a = s.modes[4], b = s.modes[5];
+    const Vector3d uvw(V * std::cos(a) * std::cos(b), V * std::sin(b),
+                       V * std::sin(a) * std::cos(b));
+    return body_from_euler(s.euler).transpose() * uvw;
+}
+
+}  // namespace
+
+Matrix3d body_from_euler(const std::array<double, 3>& e) {
+    const double cf = std::cos(e[0]), sf = std::sin(e[0]);
+    const double ct = std::cos(e[1]), st = std::sin(e[1]);
+    const double cp = std::cos(e[2]), sp = std::sin(e[2]);
+    Matrix3d C;
+    C << ct * cp, ct * sp, -st,                                   //
+        sf * st * cp - cf * sp, sf * st * sp + cf * cp, sf * ct,  //
+        cf * st * cp + sf * sp, cf * st * sp - sf * cp, cf * ct;
+    return C;
+}
+
+std::array<double, 3> continuous_euler(const Matrix3d& C, const std::array<double, 3>* previous) {
+    std::array<double, 3> e = principal(C);
+    if (!previous) return e;
+    if (std::abs(C(0, 2)) > 1.0 - 1e-12) {
+        // Gimbal lock: only phi - psi (theta = +90 deg) or phi + psi (-90 deg) is defined;
+        // keep phi.
+        e[0] = (*previous)[0];
+        e[2] = C(0, 2) < 0.0 ? e[0] - std::atan2(C(1, 0), C(1, 1))
+                             : std::atan2(-C(1, 0), C(1, 1)) - e[0];
+    }
+    return nearest_triple(e, *previous);
+}
+
+aero::Motion trajectory_interpolant(const Trajectory& tr) {
+    aero::Motion m;
+    m.t = tr.t;
+    m.position = tr.position;
+    const std::size_t n = tr.size();
+    for (auto& a : m.angles) a.resize(n);
+    std::array<double, 3> prev{};
+    for (std::size_t i = 0; i < n; ++i) {
+        std::array<double, 3> e{tr.euler[0][i], tr.euler[1][i], tr.euler[2][i]};
+        if (i > 0) e = nearest_triple(e, prev);
+        for (std::size_t k = 0; k < 3; ++k) m.angles[k][i] = e[k];
+        prev = e;
+    }
+    m.add_mode("elevator", tr.controls[0]);
+    m.add_mode("aileron", tr.controls[1]);
+    m.add_mode("rudder", tr.controls[2]);
+    m.add_mode("V", tr.V);
+    m.add_mode("alpha", tr.alpha);
+    m.add_mode("beta", tr.beta);
+    m.add_mode("mach", mach_column(tr));
+    m.add_mode("p", tr.rates[0]);
+    m.add_mode("q", tr.rates[1]);
+    m.add_mode("r", tr.rates[2]);
+    m.validate(tr.source);
+    return m;
+}
+
+TimeStepChoice choose_time_step(const Trajectory& tr, const TimeStepRule& rule, double chord) {
+    TimeStepChoice c;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    double w = 0.0;
+    for (std::size_t i = 0; i < tr.size(); ++i)
+        w = std::max(w, std::hypot(tr.rates[0][i], tr.rates[1][i], tr.rates[2][i]));
+    c.rate_scale = w > 0.0 ? 1.0 / w : inf;
+    c.control_scale = inf;
+    for (const auto& d : tr.controls) {
+        const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+        double rate = 0.0;
+        for (std::size_t i = 1; i < d.size(); ++i)
+            rate = std::max(rate, std::abs(d[i] - d[i - 1]) / (tr.t[i] - tr.t[i - 1]));
+        if (*hi - *lo > 1e-6 && rate > 0.0)
+            c.control_scale = std::min(c.control_scale, (*hi - *lo) / rate);
+    }
+    const double scale = std::min(c.rate_scale, c.control_scale);
+    const double raw = rule.fraction * scale;
+    double upper = rule.max_dt;
+    std::string upper_why = fmt::format("upper bound {} s", rule.max_dt);
+    if (chord > 0.0) {
+        const double v = *std::max_element(tr.V.begin(), tr.V.end());
+        const double convective = rule.max_chords * chord / v;
+        if (convective < upper) {
+            upper = convective;
+            upper_why = fmt::format("convective bound {:.4g} s ({} reference chords at {:.4g} m/s)",
+                                    convective, rule.max_chords, v);
+        }
+    }
+    if (raw > upper) {
+        c.dt = upper;
+        c.reason = fmt::format("{}; {} x the shortest time scale, {:.3g} s, is longer", upper_why,
+                               rule.fraction, scale);
+    } else if (raw < rule.min_dt) {
+        c.dt = rule.min_dt;
+        c.reason = fmt::format("lower bound {} s ({} x the shortest time scale is {:.3g} s)",
+                               rule.min_dt, rule.fraction, raw);
+    } else {
+        c.dt = raw;
+        c.reason =
+            fmt::format("{} x the {} time scale {:.3g} s", rule.fraction,
+                        c.rate_scale <= c.control_scale ? "body-rate" : "control-motion", scale);
+    }
+    return c;
+}
+
+ReplayMotion build_motion(const Trajectory& tr, double h) {
+    if (!(h > 0.0 && std::isfinite(h)))
+        throw InputError(fmt::format("replay: motion sample step {} s; expected > 0", h));
+    const aero::Motion I = trajectory_interpolant(tr);
+    ReplayMotion rm;
+    rm.sample_dt = h;
+    const double t0 = tr.t.front(), tN = tr.t.back();
+    const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil((tN - t0) / h - 1e-6)));
+    std::vector<double> times(n + 1);
+    for (std::size_t k = 0; k < n; ++k) times[k] = t0 + static_cast<double>(k) * h;
+    times[n] = tN;
+
+    const aero::MotionState s0 = I.at(t0);
+    const Vector3d va0 = air_velocity_earth(s0);
+    rm.v0 = tr.V.front();
+    rm.mach0 = s0.modes[6];
+    rm.altitude0 = -tr.position[2].front();
+    rm.entry_position = Vector3d(tr.position[0][0], tr.position[1][0], tr.position[2][0]);
+    rm.chi0 = std::atan2(va0.y(), va0.x());
+    rm.gamma0 = std::asin(std::clamp(-va0.z() / va0.norm(), -1.0, 1.0));
+    const double cc = std::cos(rm.chi0), sc = std::sin(rm.chi0);
+    const double cg = std::cos(rm.gamma0), sg = std::sin(rm.gamma0);
+    Matrix3d R3, R2;
+    R3 << cc, sc, 0.0, -sc, cc, 0.0, 0.0, 0.0, 1.0;
+    R2 << cg, 0.0, -sg, 0.0, 1.0, 0.0, sg, 0.0, cg;
+    rm.earth_to_motion = R2 * R3;
+    const Matrix3d& Cme = rm.earth_to_motion;
+    const Vector3d ex = rm.v0 * Vector3d::UnitX();
+    auto rel_velocity = [&](double t) { return Vector3d(Cme * air_velocity_earth(I.at(t)) - ex); };
+
+    aero::Motion& m = rm.motion;
+    m.t = times;
+    for (auto& c : m.position) c.assign(n + 1, 0.0);
+    for (auto& c : m.angles) c.assign(n + 1, 0.0);
+    std::array<std::vector<double>, 3> modes;
+    for (auto& c : modes) c.assign(n + 1, 0.0);
+    Vector3d r = Vector3d::Zero();
+    Vector3d f_prev = rel_velocity(times[0]);
+    std::array<double, 3> prev{};
+    for (std::size_t k = 0; k <= n; ++k) {
+        const double t = times[k];
+        if (k > 0) {
+            const double d = t - times[k - 1];
+            const Vector3d fm = rel_velocity(times[k - 1] + 0.5 * d);
+            const Vector3d f = rel_velocity(t);
+            r += d / 6.0 * (f_prev + 4.0 * fm + f);
+            f_prev = f;
+        }
+        const aero::MotionState s = I.at(t);
+        const Matrix3d Cbm = body_from_euler(s.euler) * Cme.transpose();
+        const std::array<double, 3> e = continuous_euler(Cbm, k > 0 ? &prev : nullptr);
+        prev = e;
+        for (std::size_t j = 0; j < 3; ++j) {
+            m.position[j][k] = r[static_cast<Eigen::Index>(j)];
+            m.angles[j][k] = e[j];
+            modes[j][k] = s.modes[j];
+        }
+    }
+    m.add_mode("elevator", std::move(modes[0]));
+    m.add_mode("aileron", std::move(modes[1]));
+    m.add_mode("rudder", std::move(modes[2]));
+    m.metadata.v0 = rm.v0;
+    m.metadata.mach = rm.mach0;
+    m.metadata.altitude = rm.altitude0;
+    m.metadata.comments.push_back(fmt::format("replay motion of {}", tr.source));
+    m.metadata.comments.push_back(fmt::format(
+        "motion frame: earth axes turned by track {} rad, flight path {} rad; entry "
+        "position {} {} {} m",
+        rm.chi0, rm.gamma0, rm.entry_position.x(), rm.entry_position.y(), rm.entry_position.z()));
+    m.validate("replay motion");
+    return rm;
+}
+
+AirState motion_air_state(const aero::Motion& motion, double v0, double t) {
+    const aero::MotionState s = motion.at(t);
+    const Vector3d uvw =
+        body_from_euler(s.euler) * Vector3d(v0 + s.velocity[0], s.velocity[1], s.velocity[2]);
+    AirState a;
+    a.airspeed = uvw.norm();
+    a.alpha = std::atan2(uvw.z(), uvw.x());
+    a.beta = a.airspeed > 0.0 ? std::asin(std::clamp(uvw.y() / a.airspeed, -1.0, 1.0)) : 0.0;
+    return a;
+}
+
+EarthPose earth_pose(const ReplayMotion& rm, double t) {
+    const aero::MotionState s = rm.motion.at(t);
+    EarthPose p;
+    const Vector3d local(rm.v0 * (t - rm.motion.t.front()) + s.position[0], s.position[1],
+                         s.position[2]);
+    p.position = rm.entry_position + rm.earth_to_motion.transpose() * local;
+    p.euler = continuous_euler(body_from_euler(s.euler) * rm.earth_to_motion, nullptr);
+    return p;
+}
+
+}  // namespace manta::replay

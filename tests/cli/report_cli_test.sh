@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# End-to-end checks of `manta report` on the fixture run directory tests/data/report/run.
+# Usage: report_cli_test.sh MANTA_BINARY REPO_ROOT WORK_DIR. Prints "N passed, N failed".
+set -u
+manta=$1
+root=$2
+work=$3
+rm -rf "$work"; mkdir -p "$work"
+pass=0; fail=0
+run=$root/tests/data/report/run
+
+check() {  # check NAME EXPECTED_EXIT COMMAND...   (stdout to out.txt, stderr to err.txt)
+    local name=$1 expected=$2; shift 2
+    "$@" >"$work/out.txt" 2>"$work/err.txt"
+    local code=$?
+    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
+        fail=$((fail + 1)); echo "FAIL: $name: exit $code, expected $expected"
+        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | head -20
+    fi
+}
+contains() {  # contains NAME FILE PATTERN
+    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else
+        fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
+}
+exists() {  # exists NAME FILE
+    if [ -s "$2" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: $2 missing or empty"; fi
+}
+absent() {  # absent NAME PATH
+    if [ ! -e "$2" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: $2 should not exist"; fi
+}
+
+check "report --help" 0 "$manta" report --help
+contains "help names --html" "$work/out.txt" "--html"
+
+# The whole run directory.
+check "report of a run directory" 0 "$manta" report "$run" --html "$work/report.html"
+exists "page written" "$work/report.html"
+contains "page is HTML" "$work/report.html" "^<!DOCTYPE html>"
+contains "summary line" "$work/out.txt" "run layout"
+contains "parts shown" "$work/out.txt" "aircraft, tables, manoeuvre:immelmann, replay:immelmann, provenance"
+if grep -qE '(src|href)="(https?:)?//' "$work/report.html"; then
+    fail=$((fail + 1)); echo "FAIL: the page refers to an external resource"; else pass=$((pass + 1)); fi
+
+check "report --json" 0 "$manta" report "$run" --html "$work/report2.html" --json
+if python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["layout"] == "run" and len(d["parts"]) == 5' "$work/out.txt"; then
+    pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: --json output"; head -5 "$work/out.txt"; fi
+
+# Figures: SVG and CSV of every figure; PNG asked of a browser that is not there: a note.
+check "report --figures" 0 "$manta" report "$run" --html "$work/r3.html" --figures "$work/fig" --png --chromium "$work/no-such-browser"
+for f in manoeuvre-0-histories.svg manoeuvre-0-histories.csv manoeuvre-0-path.svg manoeuvre-0-path.csv \
+         replay-0-coefficients.svg replay-0-coefficients.csv replay-0-differences.svg tables-dynamic.svg \
+         aircraft-three-view.svg; do
+    exists "figure $f" "$work/fig/$f"
+done
+contains "png note" "$work/out.txt" "no PNG"
+
+# Single output directories.
+check "report of an optimise directory" 0 "$manta" report "$run/manoeuvres/immelmann" --html "$work/m.html" --json
+contains "optimise layout" "$work/out.txt" '"layout": "optimise"'
+check "report of a tables directory" 0 "$manta" report "$run/tables" --html "$work/t.html"
+check "report of a replay directory" 0 "$manta" report "$run/replay/immelmann" --html "$work/rp.html"
+
+# Bad input: one line naming file, line and column; the old page is left as it was.
+cp -r "$run" "$work/bad"
+sed -i '5s/^[^,]*,/oops,/' "$work/bad/replay/immelmann/comparison.csv"
+cp "$work/report.html" "$work/keep.html"
+check "malformed CSV is bad input" 2 "$manta" report "$work/bad" --html "$work/keep.html"
+contains "error names file:line and column" "$work/err.txt" "comparison.csv:5: column 't' value 'oops' is not a number"
+if [ "$(wc -l <"$work/err.txt")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: error is not one line"; cat "$work/err.txt"; fi
+if cmp -s "$work/report.html" "$work/keep.html"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed report changed the existing page"; fi
+check "malformed JSON is bad input" 2 bash -c "cp -r '$run' '$work/bad2' && printf '{\"a\": 1,\n \"b\": }' > '$work/bad2/run.json' && '$manta' report '$work/bad2' --html '$work/bad2.html'"
+contains "JSON error names line and column" "$work/err.txt" "run.json:2:[0-9]+: invalid JSON"
+absent "no page after a failure" "$work/bad2.html"
+check "not a directory" 2 "$manta" report "$work/nowhere" --html "$work/x.html"
+contains "not a directory message" "$work/err.txt" "not a directory"
+mkdir -p "$work/empty"
+check "nothing to report" 2 "$manta" report "$work/empty" --html "$work/x.html"
+absent "no page for nothing" "$work/x.html"
+check "missing --html" 2 "$manta" report "$run"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
