@@ -257,7 +257,7 @@ void add_demo(CLI::App& app, Action& action) {
     cmd->add_option("--jobs", o->jobs, "Stages run at once (default: one per hardware thread)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--quick", o->quick,
-                  "Smoke run: the level turn instead of the paper's manoeuvres (a minute)");
+                  "Smoke run: the level turn instead of the paper's manoeuvres (under a minute)");
     cmd->add_flag("--restart", o->restart, "Discard the run folder's results and start again");
     cmd->add_option("--replay-dt", o->replay_dt,
                     "Time step of the replays [s] (default: chosen "
