@@ -18,6 +18,9 @@ packages=(
     libsqlite3-dev       # sample store of table campaigns (tables)
     coinor-libipopt-dev  # interior-point NLP solver of the optimal-control transcription (optimal)
     chromium             # headless browser test of the HTML report (report)
+    zlib1g-dev           # gzip-compressed SU2 meshes (mesh)
+    libcgns-dev          # CGNS mesh reader (mesh)
+    libgmsh-dev          # test meshes generated with the gmsh API (tests/mesh)
 )
 
 missing=()

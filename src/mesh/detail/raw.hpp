@@ -1,0 +1,105 @@
+#pragma once
+/// @file raw.hpp
+/// Private: what a reader collects before the 3-D mesh is built (2-D meshes are extruded here),
+/// and the line cursor the text readers share.
+
+#include <charconv>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "manta/mesh/mesh.hpp"
+#include "manta/mesh/readers.hpp"
+
+namespace manta::mesh::detail {
+
+/// Element kinds of any dimension (nodes in VTK order).
+enum class RawType : std::uint8_t { line, triangle, quad, tetra, hexa, prism, pyramid };
+
+/// Number of nodes of a raw element kind.
+[[nodiscard]] int raw_node_count(RawType t) noexcept;
+/// Dimension of a raw element kind (1, 2 or 3).
+[[nodiscard]] int raw_dim(RawType t) noexcept;
+
+/// Elements as a list of kinds, CSR node lists and source positions.
+struct RawElements {
+    std::vector<RawType> types;
+    std::vector<std::int64_t> offsets{0};
+    std::vector<Index> nodes;
+    std::vector<std::int64_t> where;
+    std::vector<int> marker;  ///< boundary elements only
+
+    void add(RawType t, const Index* n, std::int64_t w, int m = -1) {
+        types.push_back(t);
+        nodes.insert(nodes.end(), n, n + raw_node_count(t));
+        offsets.push_back(static_cast<std::int64_t>(nodes.size()));
+        where.push_back(w);
+        marker.push_back(m);
+    }
+    [[nodiscard]] std::size_t size() const noexcept { return types.size(); }
+};
+
+/// A mesh as read: dimension 2 or 3, nodes with three coordinates, cells of that dimension and
+/// boundary elements one dimension lower.
+struct RawMesh {
+    std::string source;
+    std::string where_label = "line";
+    int dim = 3;
+    std::vector<double> x;  ///< x y z per node
+    RawElements cells;
+    RawElements faces;
+    std::vector<std::string> markers;
+
+    int marker(const std::string& name);
+};
+
+/// Build the finalized 3-D mesh (2-D meshes extruded into a slab, `options`).
+[[nodiscard]] Mesh build_mesh(RawMesh raw, const ReadOptions& options);
+
+/// Splits text into lines and tokens, counting lines (1-based) for messages.
+class LineCursor {
+public:
+    LineCursor(std::string_view text, std::string source)
+        : text_(text), source_(std::move(source)) {}
+    /// Next line (without its end), or false at the end of the text.
+    bool next(std::string_view& line);
+    /// Next line that is not blank (after stripping `comment` and what follows, if non-zero).
+    bool next_content(std::string_view& line, char comment = 0);
+    [[nodiscard]] std::int64_t line() const noexcept { return line_; }
+    /// Bytes not yet read (a bound on the number of lines left: each takes two or more).
+    [[nodiscard]] std::size_t remaining() const noexcept {
+        return pos_ < text_.size() ? text_.size() - pos_ : 0;
+    }
+    /// InputError unless `n` lines can still follow ("NPOIN= 10^9" in a short file).
+    void require_lines(std::int64_t n, std::string_view what) const;
+    [[nodiscard]] const std::string& source() const noexcept { return source_; }
+    /// "file:line" of the current line.
+    [[nodiscard]] std::string at() const;
+    /// InputError "file:line: what".
+    [[noreturn]] void fail(const std::string& what) const;
+
+private:
+    std::string_view text_;
+    std::size_t pos_ = 0;
+    std::int64_t line_ = 0;
+    std::string source_;
+};
+
+/// Whitespace tokens of a line.
+void split(std::string_view line, std::vector<std::string_view>& out);
+
+/// Parse an integer or a floating-point token; `what` names it in the error.
+template <class T>
+T parse_number(std::string_view tok, const LineCursor& cur, std::string_view what) {
+    T v{};
+    const char* b = tok.data();
+    const char* e = tok.data() + tok.size();
+    if (!tok.empty() && *b == '+') ++b;
+    const auto r = std::from_chars(b, e, v);
+    if (r.ec != std::errc() || r.ptr != e || b == e)
+        cur.fail(std::string("'") + std::string(tok) + "' is not a valid " + std::string(what));
+    return v;
+}
+
+}  // namespace manta::mesh::detail
