@@ -5,6 +5,7 @@
 /// so a written motion reads back bit for bit.
 
 #include "manta/aero/motion.hpp"
+#include "manta/core/text.hpp"
 
 #include <fmt/format.h>
 
@@ -37,21 +38,13 @@ enum class MetaKey { v0, mach, altitude };
 constexpr std::array<std::pair<std::string_view, MetaKey>, 3> meta_keys{
     {{"v0", MetaKey::v0}, {"mach", MetaKey::mach}, {"altitude", MetaKey::altitude}}};
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
-
 /// If `comment` (text after '#') is `key: value` with a known key, that key and the value text.
 std::optional<std::pair<MetaKey, std::string_view>> split_metadata(std::string_view comment) {
     const std::size_t colon = comment.find(':');
     if (colon == std::string_view::npos) return std::nullopt;
-    const std::string_view key = trim(comment.substr(0, colon));
+    const std::string_view key = core::trim_blanks(comment.substr(0, colon));
     for (const auto& [name, k] : meta_keys) {
-        if (key == name) return std::pair{k, trim(comment.substr(colon + 1))};
+        if (key == name) return std::pair{k, core::trim_blanks(comment.substr(colon + 1))};
     }
     return std::nullopt;
 }
@@ -181,7 +174,7 @@ void check_metadata(const MotionMetadata& meta, std::string_view source) {
                 fmt::format("{}: comment starting '{}' holds a line break; expected one line",
                             source, std::string_view(c).substr(0, c.find_first_of("\r\n"))));
         }
-        if (trim(c) != c) {
+        if (core::trim_blanks(c) != c) {
             throw InputError(fmt::format(
                 "{}: comment '{}' has leading or trailing blanks; they would not survive a "
                 "round trip",
@@ -212,10 +205,10 @@ TextLayout scan_layout(std::string_view text) {
             text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
         pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
         ++line_no;
-        line = trim(line);
+        line = core::trim_blanks(line);
         if (line.empty()) continue;
         if (line.front() == '#') {
-            out.comments.emplace_back(line_no, trim(line.substr(1)));
+            out.comments.emplace_back(line_no, core::trim_blanks(line.substr(1)));
         } else if (out.header_line == 0) {
             out.header_line = line_no;
         }

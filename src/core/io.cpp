@@ -1,4 +1,5 @@
 #include "manta/core/io.hpp"
+#include "manta/core/text.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -75,28 +76,6 @@ std::vector<double> CsvTable::column(std::size_t index) const {
     return out;
 }
 
-namespace {
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
-std::vector<std::string_view> split(std::string_view line) {
-    std::vector<std::string_view> out;
-    std::size_t start = 0;
-    for (;;) {
-        const std::size_t p = line.find(',', start);
-        out.push_back(trim(
-            line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start)));
-        if (p == std::string_view::npos) break;
-        start = p + 1;
-    }
-    return out;
-}
-}  // namespace
-
 CsvTable parse_csv(std::string_view text, std::string source) {
     CsvTable t;
     t.source = std::move(source);
@@ -109,13 +88,13 @@ CsvTable parse_csv(std::string_view text, std::string source) {
             text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
         pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
         ++line_no;
-        line = trim(line);
+        line = core::trim_blanks(line);
         if (line.empty()) continue;
         if (line.front() == '#') {
-            t.comments.emplace_back(trim(line.substr(1)));
+            t.comments.emplace_back(core::trim_blanks(line.substr(1)));
             continue;
         }
-        const auto fields = split(line);
+        const auto fields = core::split_fields(line);
         if (!have_header) {
             for (std::size_t i = 0; i < fields.size(); ++i) {
                 if (fields[i].empty())

@@ -2,6 +2,7 @@
 /// Trajectory CSV reader with located validation (trajectory.hpp).
 
 #include "manta/replay/trajectory.hpp"
+#include "manta/core/text.hpp"
 
 #include <fmt/format.h>
 
@@ -18,26 +19,6 @@ namespace manta::replay {
 namespace {
 
 constexpr double deg = std::numbers::pi / 180.0;
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-    std::vector<std::string_view> out;
-    std::size_t b = 0;
-    while (true) {
-        const std::size_t e = line.find(',', b);
-        out.push_back(trim(line.substr(b, e == std::string_view::npos ? e : e - b)));
-        if (e == std::string_view::npos) break;
-        b = e + 1;
-    }
-    return out;
-}
 
 /// A column the reader knows: its name, whether required, and its physical range.
 struct Known {
@@ -96,18 +77,19 @@ Trajectory parse_trajectory(std::string_view text, std::string source) {
             text.substr(pos, e == std::string_view::npos ? std::string_view::npos : e - pos);
         pos = e == std::string_view::npos ? text.size() + 1 : e + 1;
         ++line_no;
-        line = trim(line);
+        line = core::trim_blanks(line);
         if (line.empty()) continue;
         if (line.front() == '#') {
-            const std::string_view body = trim(line.substr(1));
+            const std::string_view body = core::trim_blanks(line.substr(1));
             const std::size_t c = body.find(':');
             if (c != std::string_view::npos && c > 0 &&
                 body.substr(0, c).find(' ') == std::string_view::npos)
-                tr.metadata[std::string(body.substr(0, c))] = std::string(trim(body.substr(c + 1)));
+                tr.metadata[std::string(body.substr(0, c))] =
+                    std::string(core::trim_blanks(body.substr(c + 1)));
             continue;
         }
         if (header.empty()) {
-            header = split(line);
+            header = core::split_fields(line);
             header_line = line_no;
             std::string missing;
             for (std::size_t k = 0; k + 1 < known.size(); ++k) {
@@ -132,7 +114,7 @@ Trajectory parse_trajectory(std::string_view text, std::string source) {
                     source, line_no, missing));
             continue;
         }
-        const std::vector<std::string_view> f = split(line);
+        const std::vector<std::string_view> f = core::split_fields(line);
         for (std::size_t k = 0; k + 1 < known.size(); ++k) {
             if (col[k] < 0) continue;
             const auto c = static_cast<std::size_t>(col[k]);
@@ -198,7 +180,7 @@ Trajectory parse_trajectory(std::string_view text, std::string source) {
         std::string_view s = it->second;
         while (true) {
             const std::size_t c = s.find(',');
-            const std::string_view n = trim(s.substr(0, c));
+            const std::string_view n = core::trim_blanks(s.substr(0, c));
             if (!n.empty()) tr.phase_names.emplace_back(n);
             if (c == std::string_view::npos) break;
             s.remove_prefix(c + 1);

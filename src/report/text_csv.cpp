@@ -2,6 +2,7 @@
 /// Text CSV and JSON readers with located errors.
 
 #include "manta/report/text_csv.hpp"
+#include "manta/core/text.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -16,14 +17,6 @@
 namespace manta::report {
 
 namespace {
-
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
 
 /// Split one record starting at `pos` (which may span lines inside quotes); advances `pos` past
 /// the record's newline and `line` by the newlines consumed.
@@ -54,7 +47,7 @@ std::vector<std::string> split_record(std::string_view text, std::size_t& pos, i
             quoted = true;
             was_quoted = true;
         } else if (c == ',') {
-            fields.emplace_back(was_quoted ? field : std::string(trim(field)));
+            fields.emplace_back(was_quoted ? field : std::string(core::trim_blanks(field)));
             field.clear();
             was_quoted = false;
         } else if (c == '\n') {
@@ -67,7 +60,7 @@ std::vector<std::string> split_record(std::string_view text, std::size_t& pos, i
     if (quoted)
         throw InputError(fmt::format("{}:{}: column {}: quoted field is not closed", source,
                                      start_line, fields.size() + 1));
-    fields.emplace_back(was_quoted ? field : std::string(trim(field)));
+    fields.emplace_back(was_quoted ? field : std::string(core::trim_blanks(field)));
     return fields;
 }
 
@@ -110,10 +103,10 @@ TextCsv parse_text_csv(std::string_view text, std::string source) {
     while (pos < text.size()) {
         // Comment and blank lines are recognised at the start of a record only.
         const std::size_t nl = text.find('\n', pos);
-        const std::string_view raw = trim(
+        const std::string_view raw = core::trim_blanks(
             text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos));
         if (raw.empty() || (!have_header && raw.front() == '#')) {
-            if (!raw.empty()) t.comments.emplace_back(trim(raw.substr(1)));
+            if (!raw.empty()) t.comments.emplace_back(core::trim_blanks(raw.substr(1)));
             pos = nl == std::string_view::npos ? text.size() : nl + 1;
             ++line;
             continue;
