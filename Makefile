@@ -6,6 +6,7 @@ BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 DEMO_OUT   ?= out/demo
+FUZZ_SECONDS ?= 60
 
 .PHONY: all deps configure build demo test validate bench test-asan format check-format clean
 
@@ -33,6 +34,7 @@ test: build
 ## The full validation set, slow cases included.
 validate: build
 	ctest --test-dir $(BUILD) -L 'validation|slow' --output-on-failure -j $(JOBS)
+	bash scripts/run-fuzz.sh $(FUZZ_SECONDS)
 
 ## Benchmarks (medians of repeated runs).
 bench: build

@@ -10,7 +10,7 @@ packages=(
     libyaml-cpp-dev      # configuration files
     libcli11-dev         # command line
     libspdlog-dev libfmt-dev
-    libboost-dev         # Boost.Odeint (adaptive integration)
+    libboost-dev         # Boost.Odeint (adaptive integration), Boost.Graph (node renumbering)
     libgtest-dev libgmock-dev
     libbenchmark-dev
     nlohmann-json3-dev   # JSON output (--json) and JSON files; see docs/adr/0002-json-library.md
@@ -20,7 +20,10 @@ packages=(
     chromium             # headless browser test of the HTML report (report)
     zlib1g-dev           # gzip-compressed SU2 meshes (mesh)
     libcgns-dev          # CGNS mesh reader (mesh)
-    libgmsh-dev          # test meshes generated with the gmsh API (tests/mesh)
+    libgmsh-dev          # test meshes generated with the gmsh API (tests/mesh, tests/euler)
+    libmetis-dev         # mesh partitioning (parallel)
+    libopenmpi-dev openmpi-bin   # MPI processes of the Euler solver (parallel)
+    clang-14 libclang-rt-14-dev  # libFuzzer targets of the mesh readers (make validate, fuzz/)
 )
 
 missing=()

@@ -30,6 +30,7 @@ void add_optimise(CLI::App& app, Action& action);
 void add_tables(CLI::App& app, Action& action);
 void add_replay(CLI::App& app, Action& action);
 void add_report(CLI::App& app, Action& action);
+void add_cfd(CLI::App& app, Action& action);
 
 /// Options every aircraft command shares: the aircraft file and its loading case.
 struct AircraftOptions {

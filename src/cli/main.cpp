@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
     cli::add_tables(app, action);
     cli::add_replay(app, action);
     cli::add_report(app, action);
+    cli::add_cfd(app, action);
 
     try {
         app.parse(argc, argv);

@@ -387,20 +387,33 @@ Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
               fmt::format("{} section {}", zone, s));
         section_names[s] = sname;
         const std::string where = fmt::format("{} section '{}'", zone, sname);
+        if (start < 1 || end < start)
+            throw InputError(fmt::format("{}: {}: element range {}..{}; expected 1 <= start <= end",
+                                         src, where, start, end));
+        // Read exactly the announced range (a file whose arrays disagree with it cannot make
+        // the library write past the buffers).
         cgsize_t data_size = 0;
-        check(cg_ElementDataSize(f.fn, 1, 1, s, &data_size), where);
+        check(cg_ElementPartialSize(f.fn, 1, 1, s, start, end, &data_size), where);
         conn.resize(static_cast<std::size_t>(std::max<cgsize_t>(data_size, 1)));
         const bool mixed = stype == CGNS_ENUMV(MIXED);
         if (mixed) {
             offs.resize(static_cast<std::size_t>(end - start + 2));
-            check(cg_poly_elements_read(f.fn, 1, 1, s, conn.data(), offs.data(), nullptr), where);
+            check(cg_poly_elements_partial_read(f.fn, 1, 1, s, start, end, conn.data(), offs.data(),
+                                                nullptr),
+                  where);
         } else {
-            check(cg_elements_read(f.fn, 1, 1, s, conn.data(), nullptr), where);
+            check(cg_elements_partial_read(f.fn, 1, 1, s, start, end, conn.data(), nullptr), where);
         }
         std::size_t pos = 0;
         for (cgsize_t e = start; e <= end; ++e) {
             CGNS_ENUMT(ElementType_t) et = stype;
-            if (mixed) et = static_cast<CGNS_ENUMT(ElementType_t)>(conn[pos++]);
+            if (mixed) {
+                if (pos >= conn.size())
+                    throw InputError(fmt::format(
+                        "{}: {} element {}: connectivity ends early; expected an element type", src,
+                        where, e));
+                et = static_cast<CGNS_ENUMT(ElementType_t)>(conn[pos++]);
+            }
             RawType t{};
             if (et == CGNS_ENUMV(NODE)) {
                 pos += 1;

@@ -210,7 +210,7 @@ std::string Mesh::face_at(Index f) const {
     return fmt::format("{}: boundary face {} of marker '{}'", source_, f, marker);
 }
 
-void Mesh::finalize() {
+void Mesh::finalize(const FinalizeOptions& options) {
     const Index nn = n_nodes();
     if (nn == 0 || n_cells() == 0)
         throw InputError(
@@ -322,7 +322,7 @@ void Mesh::finalize() {
     std::size_t first_bare = 0;
     for (std::size_t e = 0; e < exposed.size(); ++e)
         if (!covered[e] && n_bare++ == 0) first_bare = e;
-    if (n_bare > 0) {
+    if (n_bare > 0 && !options.allow_unmarked_exposed_faces) {
         const auto& r = exposed[first_bare];
         std::vector<Index> fn;
         for (Index n : r.key)

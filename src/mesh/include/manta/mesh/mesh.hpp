@@ -47,6 +47,14 @@ enum class FaceType : std::uint8_t {
 /// points out of the cell; a triangle's fourth entry is -1.
 [[nodiscard]] std::span<const std::array<int, 4>> cell_faces(CellType t) noexcept;
 
+/// What `Mesh::finalize` accepts beyond a complete, closed mesh.
+struct FinalizeOptions {
+    /// Accept cell faces that are exposed (a face of one cell only) but on no marker. A
+    /// partition-local mesh (parallel::distribute) has such faces on the partition cut, where
+    /// they touch only ghost nodes; a mesh read from a file must not (false, the default).
+    bool allow_unmarked_exposed_faces = false;
+};
+
 /// A volume mesh. Build with `add_*`, then `finalize` (validation, boundary orientation); every
 /// consumer (metrics, writers) expects a finalized mesh.
 class Mesh {
@@ -75,8 +83,9 @@ public:
     /// face shared by more than two cells, every marker named and used. Boundary faces are
     /// re-ordered to their cell face's order, so their normals point out of the domain; the
     /// source positions (`where`) are then dropped. InputError naming the source, the line or
-    /// element, the cell or face and the bad value.
-    void finalize();
+    /// element, the cell or face and the bad value. `options` may relax the check of exposed
+    /// faces for partition-local meshes; every other check stays.
+    void finalize(const FinalizeOptions& options = {});
 
     [[nodiscard]] const std::string& source() const noexcept { return source_; }
     [[nodiscard]] Index n_nodes() const noexcept { return static_cast<Index>(x_.size() / 3); }

@@ -1,0 +1,52 @@
+#pragma once
+/// @file config.hpp
+/// The configuration file of `manta cfd` (docs/formats.md#cfd-configuration): flow conditions,
+/// marker roles, reference values, numerics, solver and output settings. Every key is optional;
+/// unknown keys, wrong types and out-of-range values are one-line errors naming file, line and
+/// key.
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "manta/euler/solver.hpp"
+#include "manta/mesh/mesh.hpp"
+
+namespace manta::euler {
+
+/// What `manta cfd` writes besides the summary.
+struct OutputSettings {
+    double checkpoint_interval_s = 60.0;  ///< seconds between restart files (0: only at the end)
+    bool volume = true;                   ///< flow.vtu with the volume solution
+    bool surface = true;                  ///< surface.vtu and surface.csv
+};
+
+/// A parsed configuration file. Flow values the file does not give stay unset (the command line
+/// gives them).
+struct CfdConfig {
+    std::optional<double> mach;
+    std::optional<double> alpha;  ///< [rad]
+    std::optional<double> beta;   ///< [rad]
+    double gamma = 1.4;
+    std::map<std::string, BoundaryKind> markers;  ///< roles given by name
+    ReferenceValues reference;
+    SpatialOptions spatial;
+    SolverSettings solver;
+    OutputSettings output;
+    std::string source = "<defaults>";  ///< the file, for messages
+};
+
+/// Read a configuration file (ConfigError on any bad key or value).
+[[nodiscard]] CfdConfig read_cfd_config(const std::filesystem::path& file);
+/// Parse configuration text; `source` names it in messages.
+[[nodiscard]] CfdConfig parse_cfd_config(std::string_view text, const std::string& source);
+
+/// One role per marker of `mesh`: the configured role, else the default from the marker's name
+/// (`default_role`). InputError naming the marker and the mesh if a marker has no role, or
+/// naming the configuration if it gives a role to a marker the mesh does not have.
+[[nodiscard]] std::vector<BoundaryKind> resolve_roles(const mesh::Mesh& mesh,
+                                                      const CfdConfig& config);
+
+}  // namespace manta::euler

@@ -1,0 +1,72 @@
+#pragma once
+/// @file flux.hpp
+/// Point-wise numerics of the Euler solver: the physical flux, the approximate Riemann solvers
+/// (Roe with Harten's entropy fix, HLLC) and their first-order Jacobians, and the boundary
+/// fluxes (slip wall / symmetry plane, characteristic far field) (docs/euler.md).
+///
+/// Every flux is the flux through an area vector `n` (its length is the face area, m^2), in
+/// the solver's non-dimensional variables (gas.hpp); states are primitive (rho, u, v, w, p).
+/// Jacobians are with respect to the conservative states.
+
+#include "manta/euler/gas.hpp"
+
+namespace manta::euler {
+
+/// Approximate Riemann solver of the interior (edge) fluxes.
+enum class FluxScheme {
+    roe,   ///< Roe's flux difference splitting, Harten's entropy fix on all waves
+    hllc,  ///< Toro's HLLC, wave speeds from Roe averages (Einfeldt estimates)
+};
+
+/// Options of the interior flux.
+struct FluxOptions {
+    FluxScheme scheme = FluxScheme::roe;
+    /// Harten's entropy-fix width as a fraction of the Roe-averaged spectral radius
+    /// |u.n| + c |n|: eigenvalue moduli below it are smoothed to (l^2 + d^2) / (2 d), on all
+    /// waves (acoustic, entropy, shear). 0 switches it off. Roe only (HLLC needs none). With the
+    /// fix on, stationary contacts and shocks get a dissipation of order d; without it Roe
+    /// resolves them exactly but forms expansion shocks at sonic points (docs/euler.md).
+    double entropy_fix = 0.05;
+};
+
+/// Physical Euler flux F(W).n.
+[[nodiscard]] Vec5 physical_flux(const Vec5& W, const Vec3& n, double gamma) noexcept;
+
+/// Numerical flux from the left state WL (the edge's first node) to the right state WR through
+/// `n` (pointing from left to right). Consistent: numerical_flux(W, W, n) = physical_flux(W, n).
+[[nodiscard]] Vec5 numerical_flux(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma,
+                                  const FluxOptions& options) noexcept;
+
+/// First-order Jacobians of `numerical_flux` with respect to the conservative left and right
+/// states, for the implicit operator: for Roe, dF/dUL = (A(UL) + |A_roe|) / 2 and
+/// dF/dUR = (A(UR) - |A_roe|) / 2 with the dissipation matrix frozen; HLLC uses the same
+/// (a documented approximation: it only steers the implicit iteration).
+void flux_jacobians(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma,
+                    const FluxOptions& options, Mat5& dF_dUL, Mat5& dF_dUR) noexcept;
+
+/// Exact Jacobian d(F(W).n)/dU of the physical flux (A(U) n).
+[[nodiscard]] Mat5 physical_flux_jacobian(const Vec5& W, const Vec3& n, double gamma) noexcept;
+
+/// Largest wave speed times area, |u.n| + c |n| (for local time steps).
+[[nodiscard]] double spectral_radius(const Vec5& W, const Vec3& n, double gamma) noexcept;
+
+/// Slip-wall / symmetry-plane flux through the outward boundary area vector `n`: the
+/// pressure alone, (0, p n, 0), with the wall pressure taken from the node's state.
+[[nodiscard]] Vec5 wall_flux(const Vec5& W, const Vec3& n, double gamma) noexcept;
+/// Jacobian of `wall_flux` with respect to the node's conservative state.
+[[nodiscard]] Mat5 wall_flux_jacobian(const Vec5& W, const Vec3& n, double gamma) noexcept;
+
+/// Characteristic far-field flux through the outward area vector `n` between the interior
+/// state W and the free stream W_inf: the boundary state from the locally one-dimensional
+/// Riemann invariants (incoming ones from the free stream, outgoing ones from the interior;
+/// entropy and tangential velocity from the upwind side), then the physical flux of that state.
+/// The interior's normal Mach number u.n / c picks the case: <= -1 supersonic inflow (free
+/// stream only), >= 1 supersonic outflow (interior only), else subsonic, where
+/// R+ = u.n + 2c/(gamma-1) comes from the interior, R- = u.n - 2c/(gamma-1) from the free
+/// stream, and the sign of the boundary normal velocity (R+ + R-)/2 says which side is upwind.
+/// `dF_dU`, when not null, receives the exact (analytic) Jacobian with respect to the interior
+/// conservative state; it is undefined only on the switches between the cases.
+[[nodiscard]] Vec5 farfield_flux(const Vec5& W, const Vec5& W_inf, const Vec3& n, double gamma,
+                                 Mat5* dF_dU = nullptr) noexcept;
+
+}  // namespace manta::euler

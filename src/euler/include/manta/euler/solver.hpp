@@ -1,0 +1,200 @@
+#pragma once
+/// @file solver.hpp
+/// The steady Euler solver: implicit backward Euler in pseudo-time with local time steps, a
+/// ramped and adaptive CFL number, the first-order Jacobian in 5x5 blocks solved by FGMRES with
+/// block ILU(0), divergence detection with automatic CFL back-off, convergence to a residual
+/// drop and to settled force coefficients, forces and moments on the walls (docs/euler.md).
+///
+/// One `SteadySolver` works on one partition-local mesh (the whole mesh in a serial run); with
+/// several MPI processes every process runs the same iteration on its part, and reductions and
+/// halo exchanges go through the communicator and halo of the `Domain`.
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "manta/euler/block_matrix.hpp"
+#include "manta/euler/gas.hpp"
+#include "manta/euler/spatial.hpp"
+#include "manta/parallel/communicator.hpp"
+
+namespace manta::euler {
+
+/// Free-stream conditions of a steady case.
+struct FlowCondition {
+    double mach = 0.5;   ///< free-stream Mach number
+    double alpha = 0.0;  ///< angle of attack [rad]
+    double beta = 0.0;   ///< sideslip [rad], positive wind from the right
+    double gamma = 1.4;  ///< ratio of specific heats
+    /// InputError with a one-line message for a non-physical condition (Mach outside
+    /// (0, 10], |alpha| or |beta| above 90 deg, gamma outside (1, 2]).
+    void validate() const;
+};
+
+/// Reference values of the force and moment coefficients.
+struct ReferenceValues {
+    /// Reference area [m^2]; 0: the wall area projected on the plane normal to z (the lift
+    /// direction at zero incidence): the sum of the positive z components of the wall nodes'
+    /// dual boundary faces, as SU2 does for REF_AREA = 0.
+    double area = 0.0;
+    double chord = 1.0;          ///< length of the pitching moment [m]
+    double span = 1.0;           ///< length of the rolling and yawing moments [m]
+    Vec3 moment_point{0, 0, 0};  ///< moment reference point in the mesh axes [m]
+};
+
+/// Force and moment coefficients on the walls, pressure only (p - p_inf).
+struct ForceCoefficients {
+    double CL = 0, CD = 0, CY = 0;     ///< wind axes: lift, drag, side force (toward +y)
+    double CFx = 0, CFy = 0, CFz = 0;  ///< mesh axes (x downstream, y right, z up)
+    double CMx = 0, CMy = 0, CMz = 0;  ///< mesh axes, about the moment point; x and z on the span,
+                                       ///< y on the chord
+    double area = 0;                   ///< the reference area used [m^2]
+    /// Body axes (x forward, y right, z down; Cl roll, Cm pitch, Cn yaw) from the mesh axes.
+    [[nodiscard]] double Cl() const { return -CMx; }
+    [[nodiscard]] double Cm() const { return CMy; }
+    [[nodiscard]] double Cn() const { return -CMz; }
+};
+
+/// Settings of the pseudo-time iteration.
+struct SolverSettings {
+    double cfl_initial = 5.0;  ///< CFL number of the first iteration
+    double cfl_max = 1e4;      ///< largest CFL number
+    double cfl_growth = 1.5;   ///< factor per iteration while the residual falls
+    double cfl_cut = 0.5;      ///< factor when the residual grows by more than `cfl_cut_trigger`
+    double cfl_cut_trigger = 1.5;
+    int max_iterations = 1000;
+    double residual_drop = 6.0;  ///< orders of magnitude below the peak density residual
+    /// Largest change of CL, CD and CY over the last `coefficient_window` iterations
+    /// (absolute) for the coefficients to count as settled.
+    double coefficient_tolerance = 1e-5;
+    int coefficient_window = 10;
+    /// Orders of residual drop after which the limiter is frozen (0: never). Without freezing,
+    /// the limiter's switching stalls second-order solutions with shocks a few orders down.
+    double freeze_limiter_drop = 3.0;
+    /// Iterations without a 0.1-order gain in the density residual after which the limiter is
+    /// frozen (0: never).
+    int freeze_limiter_stall = 20;
+    /// Iterations run first-order before switching to the chosen order.
+    int first_order_iterations = 0;
+    KrylovOptions linear{10, 10, 0.05};
+    int max_backoffs = 6;  ///< divergence recoveries before giving up
+    /// InputError naming the setting for a value out of range.
+    void validate() const;
+};
+
+/// A complete steady case: conditions, boundary roles, reference values and numerics.
+struct CaseSetup {
+    FlowCondition flow;
+    std::vector<BoundaryKind> roles;  ///< one per mesh marker, in the mesh's marker order
+    ReferenceValues reference;
+    SpatialOptions spatial;
+    SolverSettings solver;
+};
+
+/// One iteration's record (the history CSV row).
+struct IterationRecord {
+    int iteration = 0;
+    double wall_s = 0;                       ///< since the start of this run
+    std::array<double, 5> log10_residual{};  ///< log10 of the RMS residual per equation
+    double cfl = 0;
+    int linear_iterations = 0;
+    double linear_residual = 0;  ///< relative residual of the linear solve
+    ForceCoefficients forces;
+};
+
+/// How a run ended.
+struct SolveOutcome {
+    bool converged = false;
+    std::string reason;        ///< why it stopped, one line
+    int iterations = 0;        ///< total, restarts included
+    double residual_drop = 0;  ///< orders below the peak at the end
+    double wall_s = 0;
+    int backoffs = 0;
+    ForceCoefficients forces;
+};
+
+/// What a checkpoint keeps besides the solution.
+struct IterationState {
+    int iteration = 0;
+    double cfl = 0;
+    double peak_log10_residual = -1e300;
+    bool limiter_frozen = false;
+};
+
+/// The steady solver on one (partition-local) mesh.
+class SteadySolver {
+public:
+    /// Set up the operator, the matrix pattern and the reference area. InputError if `setup`
+    /// is invalid or has the wrong number of roles. The solution starts as the free stream.
+    SteadySolver(const Domain& domain, const parallel::Communicator& comm, const CaseSetup& setup);
+
+    /// Called after every iteration on every process (progress, history, checkpoints); return
+    /// false to stop.
+    using Monitor = std::function<bool(const IterationRecord&)>;
+
+    /// Iterate to convergence (or the iteration limit). ConvergenceError if the iteration
+    /// diverges after `max_backoffs` CFL back-offs.
+    SolveOutcome solve(const Monitor& monitor = {});
+
+    /// Conservative state of every local node (owned, then ghosts).
+    [[nodiscard]] const NodeStates& state() const noexcept { return U_; }
+    /// Replace the owned nodes' state (ghosts are exchanged here). InputError on a size mismatch
+    /// or a non-physical state (naming the node).
+    void set_state(const NodeStates& U);
+    /// The iteration counters kept in checkpoints.
+    [[nodiscard]] const IterationState& iteration_state() const noexcept { return it_; }
+    void set_iteration_state(const IterationState& s) { it_ = s; }
+
+    /// Wall forces of the current state.
+    [[nodiscard]] ForceCoefficients forces() const;
+    /// Pressure coefficient (p - p_inf) / (rho_inf V_inf^2 / 2) of every local node.
+    [[nodiscard]] std::vector<double> pressure_coefficient() const;
+    /// Primitive state (rho, u, v, w, p) of every local node, node-major.
+    [[nodiscard]] std::vector<double> primitive_state() const;
+    /// Local Mach number of every local node.
+    [[nodiscard]] std::vector<double> mach_number() const;
+
+    [[nodiscard]] const CaseSetup& setup() const noexcept { return setup_; }
+    [[nodiscard]] const Vec5& free_stream_primitive() const noexcept { return W_inf_; }
+    /// The reference area used (the configured one, or the projected wall area).
+    [[nodiscard]] double reference_area() const noexcept { return area_; }
+    /// Bytes held by the solver's arrays on this process (mesh and metrics not included).
+    [[nodiscard]] std::size_t memory_bytes() const noexcept;
+
+private:
+    void exchange(NodeStates& U) const;
+    [[nodiscard]] std::array<double, 5> rms_residual() const;
+
+    const Domain domain_;
+    const parallel::Communicator& comm_;
+    CaseSetup setup_;
+    Vec5 W_inf_;
+    double area_ = 0;
+    SpatialOperator op_;
+    std::unique_ptr<SpatialOperator> op_first_;  ///< only with first-order start iterations
+    NodeStates U_;
+    NodeStates R_;
+    NodeStates U_good_;  ///< last state known to be sound, for CFL back-off
+    BlockMatrix J_;
+    BlockIlu0 ilu_;
+    Fgmres krylov_;
+    std::vector<double> lambda_;
+    std::vector<double> rhs_;
+    std::vector<double> dU_;
+    IterationState it_;
+    std::int64_t n_global_nodes_ = 0;
+    double log10_roundoff_ = -300.0;  ///< density residual at round-off level
+};
+
+/// Default role of a marker from its name (case-insensitive): names containing "far", "inlet",
+/// "outlet", "inflow" or "outflow" are far field; "sym" symmetry; "wall", "wing", "airfoil",
+/// "aerofoil", "body", "fuselage", "tail", "fin", "nacelle", "blade" slip walls. Returns false
+/// for any other name (the caller asks for an explicit role).
+[[nodiscard]] bool default_role(const std::string& marker, BoundaryKind& role);
+
+/// "farfield", "wall" or "symmetry".
+[[nodiscard]] const char* name(BoundaryKind k) noexcept;
+
+}  // namespace manta::euler

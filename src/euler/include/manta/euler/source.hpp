@@ -1,0 +1,68 @@
+#pragma once
+/// @file source.hpp
+/// The Euler solver as an `aero::AeroSource` (docs/euler.md#as-an-aero-source): steady
+/// evaluations at (alpha, beta, Mach) on one mesh, each started from the nearest converged
+/// solution computed before (a warm start), so a table campaign pays the full convergence cost
+/// once.
+///
+/// The mesh axes are taken as x downstream (aft), y toward the right wing, z up; body-axis
+/// coefficients are x forward, y right, z down (aero/types.hpp), so CX = -CFx, CZ = -CFz,
+/// Cl = -CMx, Cm = CMy, Cn = -CMz. Rotation rates and control deflections need moving and
+/// deforming meshes (issue part 2): a query with any of them is an InputError.
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "manta/aero/source.hpp"
+#include "manta/euler/solver.hpp"
+#include "manta/mesh/dual.hpp"
+#include "manta/mesh/mesh.hpp"
+
+namespace manta::euler {
+
+/// Statistics of the evaluations so far.
+struct EulerSourceStats {
+    int evaluations = 0;
+    int warm_starts = 0;
+    int iterations = 0;  ///< summed over the evaluations
+};
+
+class EulerSource final : public aero::AeroSource {
+public:
+    /// `setup`: roles (one per marker of `mesh`), reference values, numerics and solver
+    /// settings; its flow condition is replaced by each query's. `label` names the mesh in the
+    /// fingerprint and messages. InputError if the setup does not fit the mesh.
+    EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label);
+
+    [[nodiscard]] std::string name() const override { return "euler"; }
+    [[nodiscard]] std::string fingerprint() const override { return fingerprint_; }
+    /// Converged steady coefficients at q (serial solve). Thread-safe: several evaluations may
+    /// run at once, each with its own solver. ConvergenceError if the solve diverges or stops
+    /// at its iteration limit short of the residual drop.
+    [[nodiscard]] aero::SourceResult evaluate(
+        const aero::AeroQuery<double>& q, const aero::FlowConditions& conditions) const override;
+
+    [[nodiscard]] EulerSourceStats stats() const;
+    /// Converged solutions kept for warm starts (default 16; the oldest is dropped).
+    void set_cache_size(std::size_t n) { cache_size_ = n; }
+
+private:
+    struct Cached {
+        double mach, alpha, beta;
+        NodeStates U;
+    };
+    mesh::Mesh mesh_;
+    mesh::DualMetrics dual_;
+    parallel::SerialHalo halo_;
+    parallel::SerialCommunicator comm_;
+    CaseSetup setup_;
+    std::string fingerprint_;
+    std::size_t cache_size_ = 16;
+    mutable std::mutex mutex_;
+    mutable std::vector<Cached> cache_;
+    mutable EulerSourceStats stats_;
+};
+
+}  // namespace manta::euler

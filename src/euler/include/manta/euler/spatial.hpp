@@ -1,0 +1,172 @@
+#pragma once
+/// @file spatial.hpp
+/// The semi-discrete operator of the vertex-centred, edge-based finite-volume scheme on the
+/// median dual: R(U), the sum of the numerical fluxes out of every node's dual cell, its
+/// first-order Jacobian and the spectral radii for local time steps (docs/euler.md,
+/// "Spatial discretisation").
+///
+/// Interior fluxes: one numerical flux (flux.hpp) per edge (i, j) through the dual face's area
+/// vector n_ij, between the states reconstructed at the edge midpoint. First order: the node
+/// states. Second order (MUSCL on the primitive variables W = (rho, u, v, w, p); Barth &
+/// Jespersen, AIAA 89-0366, 1989): W_L = W_i + phi_i (grad W_i . (x_j - x_i) / 2), W_R = W_j -
+/// phi_j (grad W_j . (x_j - x_i) / 2), component by component, with
+/// - gradients by inverse-distance-weighted least squares (weights 1 / |x_j - x_i|^2 on the
+///   squared differences; the 3x3 normal matrices are inverted once, at construction) or by
+///   Green-Gauss on the median dual in its edge form grad W_i = 1 / (2 V_i) sum_j (W_j - W_i)
+///   n_ij (equal to the form with midpoint face values and W_i on the boundary faces because
+///   every dual cell is closed; exact for linear fields at interior nodes of tetrahedral
+///   meshes);
+/// - Venkatakrishnan's smooth limiter (V. Venkatakrishnan, "Convergence to steady state
+///   solutions of the Euler equations on unstructured grids with limiters", J. Comput. Phys.
+///   118, 120-130, 1995), per node and per variable, with eps^2 = (K h)^3,
+///   h = V_i^(1/3) (lengths in the mesh's unit, metres);
+/// - a positivity fallback: an edge whose reconstructed density or pressure is not positive on
+///   either side uses the first-order states (counted, `positivity_fallbacks`).
+///
+/// Boundary fluxes at each boundary node with the node's own state, once per marker touching the
+/// node (a node where a wall meets a symmetry plane gets both faces' fluxes): characteristic far
+/// field, slip wall, and symmetry planes treated as slip walls (the weak form: only the pressure
+/// flux (0, p n, 0)). At second order the gradients of nodes on a symmetry plane (unit normal
+/// n) are made those of the mirrored solution: with the reflection S = I - 2 n n^T, a scalar's
+/// gradient g becomes (g + S g) / 2 (its normal component removed) and the velocity gradient G
+/// becomes (G + S G S) / 2 (d u_t / dn and d u_n / dt removed), once per symmetry marker at the
+/// node.
+///
+/// Partition-local meshes (docs/parallel.md): nodes [0, n_owned) are owned, the rest ghosts.
+/// Edges between two ghosts are skipped; residuals, gradients and limiters are computed for
+/// owned nodes, the ghosts' gradients and limiters come from one halo exchange per residual.
+
+#include <cstdint>
+#include <vector>
+
+#include "manta/euler/block_matrix.hpp"
+#include "manta/euler/flux.hpp"
+#include "manta/euler/gas.hpp"
+#include "manta/mesh/dual.hpp"
+#include "manta/mesh/mesh.hpp"
+#include "manta/parallel/communicator.hpp"
+
+namespace manta::euler {
+
+/// Boundary condition of a mesh marker.
+enum class BoundaryKind {
+    farfield,  ///< characteristic far field to the free stream (flux.hpp `farfield_flux`)
+    wall,      ///< inviscid slip wall (pressure flux only)
+    symmetry,  ///< symmetry plane: slip-wall flux, mirrored gradients
+};
+
+/// How the second-order reconstruction's gradients are computed.
+enum class GradientMethod {
+    green_gauss,    ///< edge-based Green-Gauss on the median dual
+    least_squares,  ///< inverse-distance-weighted least squares, 3x3 per node precomputed
+};
+
+/// Options of the spatial discretisation.
+struct SpatialOptions {
+    /// 1 (node states on the edges) or 2 (MUSCL reconstruction of the primitive variables).
+    int order = 2;
+    /// Gradient method of the reconstruction (order 2).
+    GradientMethod gradient = GradientMethod::least_squares;
+    /// Venkatakrishnan's limiter on (order 2); off: unlimited reconstruction.
+    bool limiter = true;
+    /// Venkatakrishnan's K: eps^2 = (K h)^3 with h = V_i^(1/3) in the mesh's length unit (m).
+    /// Larger K limits less (K -> infinity: no limiting); the usual range is 0.3 to 10. As in
+    /// the original paper, eps^2 is not scaled by the solution's magnitude, so its effect
+    /// depends on the mesh's length unit and on the non-dimensional variables (gas.hpp).
+    double venkatakrishnan_k = 5.0;
+    /// Interior numerical flux.
+    FluxOptions flux;
+
+    /// ConfigError (one line naming the option, the value and what was expected) if the order
+    /// is not 1 or 2, K is not positive and finite, or the entropy-fix width is not in [0, 1].
+    void validate() const;
+};
+
+/// A partition-local mesh (the whole mesh in a serial run). Borrowed: the pointees must outlive
+/// every SpatialOperator built on it.
+struct Domain {
+    const mesh::Mesh* mesh = nullptr;         ///< finalized mesh, owned nodes first
+    const mesh::DualMetrics* dual = nullptr;  ///< its median-dual metrics
+    mesh::Index n_owned = 0;                  ///< nodes [0, n_owned) are owned
+    const parallel::Halo* halo = nullptr;     ///< owned -> ghost exchange of node values
+};
+
+/// The residual R(U) of the semi-discrete equations V_i dU_i/dt + R_i(U) = 0, its first-order
+/// Jacobian and the spectral radii. Work arrays are allocated at construction; `residual` does
+/// not allocate (after the first call with a given R).
+class SpatialOperator {
+public:
+    /// `kinds`: one per mesh marker (Mesh::markers() order); `W_inf`: free-stream primitive
+    /// state (gas.hpp); `gamma`: ratio of specific heats. Precomputes the least-squares
+    /// matrices. InputError if the domain is incomplete, `kinds` has the wrong length, the free
+    /// stream is not physical or gamma <= 1; ConfigError from `o.validate()`.
+    SpatialOperator(const Domain& d, std::vector<BoundaryKind> kinds, const Vec5& W_inf,
+                    double gamma, const SpatialOptions& o);
+
+    /// R (5 x n_local, resized if needed): R(:, i) = sum of the fluxes out of node i's dual cell
+    /// for owned nodes, ghost columns 0. U: conservative states of all local nodes, ghost columns
+    /// current. Gradients and limiter values of the ghosts are obtained by one halo exchange.
+    void residual(const NodeStates& U, NodeStates& R);
+
+    /// lambda_i (resized to n_owned) = sum over node i's dual faces of |u.n| + c |n|: the mean
+    /// of the two nodes' values on an edge face, the node's own on a boundary face (m^3/s in
+    /// the solver's units; local time step dt_i = CFL V_i / lambda_i).
+    void spectral_radii(const NodeStates& U, std::vector<double>& lambda) const;
+
+    /// The first-order implicit operator dR/dU: `flux_jacobians` of every edge at the node
+    /// states and the boundary flux Jacobians on the diagonal, whatever the order of `residual`
+    /// (the usual defect-correction approximation). J must have the pattern of
+    /// `make_jacobian_matrix` (dual->edges, n_rows = n_owned); it is set to zero first.
+    void jacobian(const NodeStates& U, BlockMatrix& J) const;
+
+    /// A matrix with the pattern `jacobian` expects (n_owned rows, n_local columns).
+    [[nodiscard]] BlockMatrix make_jacobian_matrix() const;
+
+    /// Keep the limiter values of the last `residual` (true) instead of recomputing them, a
+    /// standard aid to convergence to machine zero; false recomputes them again.
+    void freeze_limiter(bool frozen) noexcept { frozen_ = frozen; }
+    [[nodiscard]] bool is_limiter_frozen() const noexcept { return frozen_; }
+
+    /// Primitive-variable gradient of node `n` from the last second-order `residual` (row k:
+    /// d W_k / d(x, y, z)); zero before it or at order 1. Ghosts: the exchanged values.
+    [[nodiscard]] Eigen::Matrix<double, 5, 3> gradient(mesh::Index n) const;
+    /// Limiter values phi (0..1, one per primitive variable) of node `n` from the last
+    /// second-order `residual`; 1 without a limiter.
+    [[nodiscard]] Vec5 limiter(mesh::Index n) const;
+    /// Edges that fell back to first order in the last `residual` (non-positive reconstructed
+    /// density or pressure).
+    [[nodiscard]] std::int64_t positivity_fallbacks() const noexcept { return n_fallbacks_; }
+
+    [[nodiscard]] const SpatialOptions& options() const noexcept { return options_; }
+    [[nodiscard]] const Domain& domain() const noexcept { return domain_; }
+    /// Number of local nodes (owned and ghost).
+    [[nodiscard]] mesh::Index n_local() const noexcept { return n_local_; }
+    /// Bytes of the operator's own arrays (capacity; the mesh and metrics not included).
+    [[nodiscard]] std::size_t memory_bytes() const noexcept;
+
+private:
+    void compute_primitive(const NodeStates& U);
+    void compute_gradients();
+    void mirror_symmetry_gradients();
+    void compute_limiter();
+    void add_boundary_fluxes(double* r) const;
+
+    Domain domain_;
+    std::vector<BoundaryKind> kinds_;
+    Vec5 W_inf_;
+    double gamma_;
+    SpatialOptions options_;
+    mesh::Index n_local_ = 0;
+    mesh::Index n_edges_active_ = 0;  ///< edges with an owned node: a prefix of dual->edges
+    bool frozen_ = false;
+    std::int64_t n_fallbacks_ = 0;
+
+    std::vector<double> W_;       ///< 5 per local node: primitive states
+    std::vector<double> gp_;      ///< 20 per local node: gradient (5x3, row-major) then phi (5)
+    std::vector<double> minmax_;  ///< 10 per owned node: neighbourhood min (5), max (5) of W
+    std::vector<double> lsq_;     ///< 6 per owned node: inverse normal matrix, xx xy xz yy yz zz
+    std::vector<mesh::Index> symmetry_nodes_;  ///< owned nodes on symmetry markers (one per marker)
+    std::vector<double> symmetry_normals_;     ///< 3 per entry of symmetry_nodes_: unit normal
+};
+
+}  // namespace manta::euler

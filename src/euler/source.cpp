@@ -1,0 +1,117 @@
+/// @file source.cpp
+/// The Euler solver behind aero::AeroSource (source.hpp).
+
+#include "manta/euler/source.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "manta/core/error.hpp"
+#include "manta/core/version.hpp"
+#include "manta/euler/output.hpp"
+
+namespace manta::euler {
+
+EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label)
+    : mesh_(std::move(mesh)), dual_(mesh::compute_dual_metrics(mesh_)), setup_(std::move(setup)) {
+    if (static_cast<int>(setup_.roles.size()) != mesh_.n_markers())
+        throw InputError(fmt::format("{}: {} boundary roles for {} markers", label,
+                                     setup_.roles.size(), mesh_.n_markers()));
+    setup_.spatial.validate();
+    setup_.solver.validate();
+    std::string roles;
+    for (std::size_t m = 0; m < setup_.roles.size(); ++m)
+        roles +=
+            fmt::format("{}{}={}", m ? "," : "", mesh_.markers()[m], euler::name(setup_.roles[m]));
+    const SpatialOptions& o = setup_.spatial;
+    const SolverSettings& s = setup_.solver;
+    const ReferenceValues& r = setup_.reference;
+    parallel::SerialCommunicator comm;
+    std::vector<std::int64_t> ids(static_cast<std::size_t>(mesh_.n_nodes()));
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::int64_t>(i);
+    fingerprint_ = fmt::format(
+        "euler {} mesh={} [{}] roles={} order={} flux={} gradient={} limiter={} K={} fix={} "
+        "gamma={} drop={} ref=({},{},{},{},{},{})",
+        core::version(), label, mesh_fingerprint(mesh_, ids, mesh_.n_nodes(), comm), roles, o.order,
+        o.flux.scheme == FluxScheme::roe ? "roe" : "hllc",
+        o.gradient == GradientMethod::least_squares ? "lsq" : "gg", o.limiter, o.venkatakrishnan_k,
+        o.flux.entropy_fix, setup_.flow.gamma, s.residual_drop, r.area, r.chord, r.span,
+        r.moment_point.x(), r.moment_point.y(), r.moment_point.z());
+}
+
+EulerSourceStats EulerSource::stats() const {
+    std::lock_guard lock(mutex_);
+    return stats_;
+}
+
+aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
+                                         const aero::FlowConditions& /*conditions*/) const {
+    if (q.p_hat != 0.0 || q.q_hat != 0.0 || q.r_hat != 0.0 || q.alpha_dot_hat != 0.0 ||
+        q.beta_dot_hat != 0.0)
+        throw InputError(
+            "euler source: rotation rates need a moving mesh, which this version's Euler solver "
+            "does not have; take the dynamic derivatives from the vortex-lattice source");
+    if (q.elevator != 0.0 || q.aileron != 0.0 || q.rudder != 0.0)
+        throw InputError(
+            "euler source: control deflections need a deforming mesh, which this version's Euler "
+            "solver does not have; take the control increments from the vortex-lattice source");
+    CaseSetup setup = setup_;
+    setup.flow.mach = q.mach;
+    setup.flow.alpha = q.alpha;
+    setup.flow.beta = q.beta;
+    const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
+    SteadySolver solver(domain, comm_, setup);
+
+    // Warm start from the nearest converged solution (distance in degrees and Mach / 0.05).
+    bool warm = false;
+    {
+        std::lock_guard lock(mutex_);
+        const Cached* best = nullptr;
+        double best_d = std::numeric_limits<double>::infinity();
+        for (const Cached& c : cache_) {
+            const double d =
+                std::hypot((c.alpha - q.alpha) * 57.29577951308232,
+                           (c.beta - q.beta) * 57.29577951308232, (c.mach - q.mach) / 0.05);
+            if (d < best_d) {
+                best_d = d;
+                best = &c;
+            }
+        }
+        if (best) {
+            solver.set_state(best->U);
+            warm = true;
+        }
+    }
+    const SolveOutcome oc = solver.solve();
+    if (!oc.converged)
+        throw ConvergenceError(fmt::format(
+            "euler source at M {:g}, alpha {:.4g} deg, beta {:.4g} "
+            "deg: {}",
+            q.mach, q.alpha * 57.29577951308232, q.beta * 57.29577951308232, oc.reason));
+    {
+        std::lock_guard lock(mutex_);
+        ++stats_.evaluations;
+        stats_.warm_starts += warm ? 1 : 0;
+        stats_.iterations += oc.iterations;
+        cache_.push_back({q.mach, q.alpha, q.beta, solver.state()});
+        if (cache_.size() > cache_size_) cache_.erase(cache_.begin());
+    }
+    const ForceCoefficients& f = oc.forces;
+    aero::SourceResult r;
+    r.body.CX = -f.CFx;
+    r.body.CY = f.CFy;
+    r.body.CZ = -f.CFz;
+    r.body.Cl = f.Cl();
+    r.body.Cm = f.Cm();
+    r.body.Cn = f.Cn();
+    r.wind.CL = f.CL;
+    r.wind.CD = f.CD;
+    r.wind.CY = f.CY;
+    r.CD_induced = f.CD;
+    r.CD_profile = 0.0;
+    return r;
+}
+
+}  // namespace manta::euler

@@ -1,0 +1,492 @@
+/// @file spatial.cpp
+/// The edge-based residual (spatial.hpp): four sweeps per second-order residual, each over flat
+/// arrays: primitive states (nodes), gradient sums and neighbourhood extrema (edges), the
+/// limiter (edges), one halo exchange of gradients and limiters, then the fluxes (edges) and
+/// the boundary fluxes (boundary nodes).
+
+#include "manta/euler/spatial.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+
+#include "manta/core/error.hpp"
+
+namespace manta::euler {
+
+using mesh::Index;
+
+namespace {
+
+/// Values per node in the gradient-and-limiter array: the 5x3 gradient then the 5 limiters.
+constexpr int n_gp = 20;
+constexpr int phi_offset = 15;
+
+/// Venkatakrishnan's limiter function for an increment `d2` (= grad . dx / 2) toward a face
+/// and the neighbourhood's extreme difference `d1` (max - W_i if d2 > 0, min - W_i if d2 < 0):
+/// phi = [(d1^2 + eps2) + 2 d1 d2] / [d1^2 + 2 d2^2 + d1 d2 + eps2] (Venkatakrishnan 1995,
+/// J. Comput. Phys. 118: his limiter function divided by d2).
+inline double venkatakrishnan(double d1, double d2, double eps2) noexcept {
+    const double d1s = d1 * d1 + eps2;
+    return (d1s + 2.0 * d1 * d2) / (d1s + d2 * (2.0 * d2 + d1));
+}
+
+inline void load3(const double* p, double& a, double& b, double& c) noexcept {
+    a = p[0];
+    b = p[1];
+    c = p[2];
+}
+
+}  // namespace
+
+void SpatialOptions::validate() const {
+    if (order != 1 && order != 2)
+        throw ConfigError(fmt::format(
+            "numerics.order = {}; expected 1 (first order) or 2 (MUSCL reconstruction)", order));
+    if (!(venkatakrishnan_k > 0.0) || !std::isfinite(venkatakrishnan_k))
+        throw ConfigError(fmt::format(
+            "numerics.venkatakrishnan_k = {}; expected a finite number > 0 (usual range 0.3 to 10)",
+            venkatakrishnan_k));
+    if (!(flux.entropy_fix >= 0.0 && flux.entropy_fix <= 1.0))
+        throw ConfigError(fmt::format(
+            "numerics.entropy_fix = {}; expected a fraction of the spectral radius in [0, 1]",
+            flux.entropy_fix));
+}
+
+SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kinds,
+                                 const Vec5& W_inf, double gamma, const SpatialOptions& o)
+    : domain_(d), kinds_(std::move(kinds)), W_inf_(W_inf), gamma_(gamma), options_(o) {
+    options_.validate();
+    if (d.mesh == nullptr || d.dual == nullptr || d.halo == nullptr)
+        throw InputError(
+            "euler spatial operator: the domain needs a mesh, its dual metrics and a halo");
+    const mesh::Mesh& m = *d.mesh;
+    const mesh::DualMetrics& dual = *d.dual;
+    n_local_ = m.n_nodes();
+    if (static_cast<Index>(dual.dual_volumes.size()) != n_local_ ||
+        static_cast<int>(dual.boundary.size()) != m.n_markers())
+        throw InputError(
+            fmt::format("{}: the dual metrics ({} nodes, {} markers) do not belong to the mesh "
+                        "({} nodes, {} markers)",
+                        m.source(), dual.dual_volumes.size(), dual.boundary.size(), m.n_nodes(),
+                        m.n_markers()));
+    if (d.n_owned < 0 || d.n_owned > n_local_)
+        throw InputError(fmt::format("{}: {} owned nodes; expected 0 to {} (the local nodes)",
+                                     m.source(), d.n_owned, n_local_));
+    if (static_cast<int>(kinds_.size()) != m.n_markers())
+        throw InputError(
+            fmt::format("{}: {} boundary kinds given for {} markers; expected one per marker",
+                        m.source(), kinds_.size(), m.n_markers()));
+    if (!(gamma > 1.0) || !std::isfinite(gamma))
+        throw InputError(fmt::format("euler gamma = {}; expected a finite number > 1", gamma));
+    if (!(W_inf[0] > 0.0) || !(W_inf[4] > 0.0) || !W_inf.allFinite())
+        throw InputError(
+            fmt::format("euler free stream (rho {}, p {}); expected finite values, rho > 0, p > 0",
+                        W_inf[0], W_inf[4]));
+
+    // Edges are sorted by their first node and i < j: the edges with an owned node come first.
+    const auto first_ghost_edge =
+        std::partition_point(dual.edges.begin(), dual.edges.end(),
+                             [n = d.n_owned](const std::array<Index, 2>& e) { return e[0] < n; });
+    n_edges_active_ = static_cast<Index>(first_ghost_edge - dual.edges.begin());
+
+    const auto nl = static_cast<std::size_t>(n_local_);
+    const auto no = static_cast<std::size_t>(d.n_owned);
+    W_.assign(5 * nl, 0.0);
+    if (options_.order == 2) {
+        gp_.assign(n_gp * nl, 0.0);
+        for (std::size_t n = 0; n < nl; ++n)
+            std::fill_n(gp_.begin() + static_cast<std::ptrdiff_t>(n_gp * n + phi_offset), 5, 1.0);
+        if (options_.limiter) minmax_.assign(10 * no, 0.0);
+        // Unit normals of the owned nodes on symmetry planes, for the mirrored gradients.
+        for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
+            if (kinds_[mk] != BoundaryKind::symmetry) continue;
+            const mesh::BoundaryVertices& bv = dual.boundary[mk];
+            for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < d.n_owned; ++k) {
+                const Vec3 n = bv.normals.col(static_cast<Index>(k));
+                const double a = n.norm();
+                if (!(a > 0.0)) continue;
+                symmetry_nodes_.push_back(bv.nodes[k]);
+                for (int c = 0; c < 3; ++c) symmetry_normals_.push_back(n[c] / a);
+            }
+        }
+    }
+    if (options_.order == 2 && options_.gradient == GradientMethod::least_squares) {
+        // Normal matrices M_i = sum_j w dx dx^T, w = 1 / |dx|^2, over the edges of owned nodes.
+        std::vector<double> M(6 * no, 0.0);
+        const double* x = m.coordinates().data();
+        const auto add = [&M](Index n, double dx, double dy, double dz, double w) {
+            double* a = M.data() + 6 * static_cast<std::size_t>(n);
+            a[0] += w * dx * dx;
+            a[1] += w * dx * dy;
+            a[2] += w * dx * dz;
+            a[3] += w * dy * dy;
+            a[4] += w * dy * dz;
+            a[5] += w * dz * dz;
+        };
+        for (Index e = 0; e < n_edges_active_; ++e) {
+            const auto [i, j] = dual.edges[e];
+            const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
+                         dz = x[3 * j + 2] - x[3 * i + 2];
+            const double w = 1.0 / (dx * dx + dy * dy + dz * dz);
+            add(i, dx, dy, dz, w);
+            if (j < d.n_owned) add(j, dx, dy, dz, w);
+        }
+        lsq_.assign(6 * no, 0.0);
+        for (std::size_t n = 0; n < no; ++n) {
+            const double* a = M.data() + 6 * n;
+            Eigen::Matrix3d A;
+            A << a[0], a[1], a[2], a[1], a[3], a[4], a[2], a[4], a[5];
+            // The weighted directions are unit vectors: trace(A) = number of neighbours. A node
+            // whose neighbours span less than three dimensions (never in a valid 3-D mesh) gets
+            // the pseudo-inverse, i.e. the gradient in the directions it can see.
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+            const Eigen::Vector3d l = es.eigenvalues();
+            const double tol = 1e-10 * std::max(l.maxCoeff(), 1e-300);
+            Eigen::Vector3d inv_l;
+            for (int k = 0; k < 3; ++k) inv_l[k] = l[k] > tol ? 1.0 / l[k] : 0.0;
+            const Eigen::Matrix3d Ai =
+                es.eigenvectors() * inv_l.asDiagonal() * es.eigenvectors().transpose();
+            double* s = lsq_.data() + 6 * n;
+            s[0] = Ai(0, 0);
+            s[1] = Ai(0, 1);
+            s[2] = Ai(0, 2);
+            s[3] = Ai(1, 1);
+            s[4] = Ai(1, 2);
+            s[5] = Ai(2, 2);
+        }
+    }
+}
+
+std::size_t SpatialOperator::memory_bytes() const noexcept {
+    return (W_.capacity() + gp_.capacity() + minmax_.capacity() + lsq_.capacity() +
+            symmetry_normals_.capacity()) *
+               sizeof(double) +
+           symmetry_nodes_.capacity() * sizeof(Index) + kinds_.capacity() * sizeof(BoundaryKind);
+}
+
+BlockMatrix SpatialOperator::make_jacobian_matrix() const {
+    return {domain_.n_owned, n_local_, domain_.dual->edges};
+}
+
+Eigen::Matrix<double, 5, 3> SpatialOperator::gradient(Index n) const {
+    Eigen::Matrix<double, 5, 3> g = Eigen::Matrix<double, 5, 3>::Zero();
+    if (gp_.empty()) return g;
+    const double* p = gp_.data() + n_gp * static_cast<std::size_t>(n);
+    for (int k = 0; k < 5; ++k)
+        for (int c = 0; c < 3; ++c) g(k, c) = p[3 * k + c];
+    return g;
+}
+
+Vec5 SpatialOperator::limiter(Index n) const {
+    if (gp_.empty()) return Vec5::Ones();
+    return Eigen::Map<const Vec5>(gp_.data() + n_gp * static_cast<std::size_t>(n) + phi_offset);
+}
+
+void SpatialOperator::compute_primitive(const NodeStates& U) {
+    MANTA_REQUIRE(U.cols() == n_local_, "euler residual: U needs one column per local node");
+    const double g1 = gamma_ - 1.0;
+    const double* u = U.data();
+    double* w = W_.data();
+    for (Index n = 0; n < n_local_; ++n, u += 5, w += 5) {
+        const double inv = 1.0 / u[0];
+        const double vx = u[1] * inv, vy = u[2] * inv, vz = u[3] * inv;
+        w[0] = u[0];
+        w[1] = vx;
+        w[2] = vy;
+        w[3] = vz;
+        w[4] = g1 * (u[4] - 0.5 * u[0] * (vx * vx + vy * vy + vz * vz));
+    }
+}
+
+void SpatialOperator::compute_gradients() {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    const double* x = domain_.mesh->coordinates().data();
+    const double* W = W_.data();
+    const double* sn = dual.edge_normals.data();
+    const auto* edges = dual.edges.data();
+    const bool lsq = options_.gradient == GradientMethod::least_squares;
+    const bool extrema = options_.limiter && !frozen_;
+    double* gp = gp_.data();
+    double* mm = minmax_.data();
+
+    for (Index n = 0; n < no; ++n) {
+        std::fill_n(gp + n_gp * static_cast<std::size_t>(n), 15, 0.0);
+        if (extrema) {
+            std::copy_n(W + 5 * static_cast<std::size_t>(n), 5, mm + 10 * n);
+            std::copy_n(W + 5 * static_cast<std::size_t>(n), 5, mm + 10 * n + 5);
+        }
+    }
+
+    // Sums over the edges: least squares sum_j w dx (W_j - W_i) (the same for both nodes:
+    // dx and dW both change sign); Green-Gauss sum_j (W_j - W_i) n_ij / 2 (n_ji = -n_ij).
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = edges[e][0], j = edges[e][1];
+        double ax, ay, az;  // the weighted direction of the differences
+        if (lsq) {
+            const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
+                         dz = x[3 * j + 2] - x[3 * i + 2];
+            const double w = 1.0 / (dx * dx + dy * dy + dz * dz);
+            ax = w * dx;
+            ay = w * dy;
+            az = w * dz;
+        } else {
+            load3(sn + 3 * static_cast<std::size_t>(e), ax, ay, az);
+            ax *= 0.5;
+            ay *= 0.5;
+            az *= 0.5;
+        }
+        const double* Wi = W + 5 * static_cast<std::size_t>(i);
+        const double* Wj = W + 5 * static_cast<std::size_t>(j);
+        double* gi = gp + n_gp * static_cast<std::size_t>(i);
+        double* gj = gp + n_gp * static_cast<std::size_t>(j);
+        const bool j_owned = j < no;
+        for (int k = 0; k < 5; ++k) {
+            const double dW = Wj[k] - Wi[k];
+            gi[3 * k] += ax * dW;
+            gi[3 * k + 1] += ay * dW;
+            gi[3 * k + 2] += az * dW;
+        }
+        if (j_owned) {
+            for (int k = 0; k < 5; ++k) {
+                const double dW = Wj[k] - Wi[k];
+                gj[3 * k] += ax * dW;
+                gj[3 * k + 1] += ay * dW;
+                gj[3 * k + 2] += az * dW;
+            }
+        }
+        if (extrema) {
+            double* mi = mm + 10 * static_cast<std::size_t>(i);
+            for (int k = 0; k < 5; ++k) {
+                mi[k] = std::min(mi[k], Wj[k]);
+                mi[5 + k] = std::max(mi[5 + k], Wj[k]);
+            }
+            if (j_owned) {
+                double* mj = mm + 10 * static_cast<std::size_t>(j);
+                for (int k = 0; k < 5; ++k) {
+                    mj[k] = std::min(mj[k], Wi[k]);
+                    mj[5 + k] = std::max(mj[5 + k], Wi[k]);
+                }
+            }
+        }
+    }
+
+    // Node step: least squares multiplies by the inverse normal matrix, Green-Gauss divides by
+    // the dual volume.
+    for (Index n = 0; n < no; ++n) {
+        double* g = gp + n_gp * static_cast<std::size_t>(n);
+        if (lsq) {
+            const double* a = lsq_.data() + 6 * static_cast<std::size_t>(n);
+            for (int k = 0; k < 5; ++k) {
+                const double bx = g[3 * k], by = g[3 * k + 1], bz = g[3 * k + 2];
+                g[3 * k] = a[0] * bx + a[1] * by + a[2] * bz;
+                g[3 * k + 1] = a[1] * bx + a[3] * by + a[4] * bz;
+                g[3 * k + 2] = a[2] * bx + a[4] * by + a[5] * bz;
+            }
+        } else {
+            const double s = 1.0 / dual.dual_volumes[n];
+            for (int k = 0; k < 15; ++k) g[k] *= s;
+        }
+    }
+}
+
+void SpatialOperator::mirror_symmetry_gradients() {
+    for (std::size_t s = 0; s < symmetry_nodes_.size(); ++s) {
+        const Eigen::Map<const Vec3> n(symmetry_normals_.data() + 3 * s);
+        double* g = gp_.data() + n_gp * static_cast<std::size_t>(symmetry_nodes_[s]);
+        // Scalars rho and p: (g + S g) / 2 = g - (g . n) n.
+        for (int k : {0, 4}) {
+            Eigen::Map<Vec3> gk(g + 3 * k);
+            gk -= gk.dot(n) * n;
+        }
+        // Velocity (rows u, v, w): (G + S G S) / 2 = G - (P G + G P) + 2 P G P, P = n n^T.
+        Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> G(g + 3);
+        const Vec3 Gn = G * n;                            // G P = Gn n^T
+        const Eigen::RowVector3d nG = n.transpose() * G;  // P G = n nG
+        const double nGn = nG.dot(n);
+        G -= n * nG + Gn * n.transpose();
+        G += 2.0 * nGn * n * n.transpose();
+    }
+}
+
+void SpatialOperator::compute_limiter() {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    const double* x = domain_.mesh->coordinates().data();
+    const double* W = W_.data();
+    const auto* edges = dual.edges.data();
+    double* gp = gp_.data();
+    const double* mm = minmax_.data();
+    const double k3 =
+        options_.venkatakrishnan_k * options_.venkatakrishnan_k * options_.venkatakrishnan_k;
+
+    for (Index n = 0; n < no; ++n) std::fill_n(gp + n_gp * n + phi_offset, 5, 1.0);
+
+    // One side of an edge: the increment toward the midpoint is s * grad . dx / 2.
+    const auto side = [&](Index n, double dx, double dy, double dz) {
+        double* g = gp + n_gp * static_cast<std::size_t>(n);
+        const double* Wn = W + 5 * static_cast<std::size_t>(n);
+        const double* m = mm + 10 * static_cast<std::size_t>(n);
+        // eps^2 = (K h)^3 with h^3 = V (Venkatakrishnan 1995).
+        const double eps2 = k3 * dual.dual_volumes[n];
+        for (int k = 0; k < 5; ++k) {
+            const double d2 = 0.5 * (g[3 * k] * dx + g[3 * k + 1] * dy + g[3 * k + 2] * dz);
+            double phi = 1.0;
+            if (d2 > 0.0)
+                phi = venkatakrishnan(m[5 + k] - Wn[k], d2, eps2);
+            else if (d2 < 0.0)
+                phi = venkatakrishnan(m[k] - Wn[k], d2, eps2);
+            g[phi_offset + k] = std::min(g[phi_offset + k], phi);
+        }
+    };
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = edges[e][0], j = edges[e][1];
+        const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
+                     dz = x[3 * j + 2] - x[3 * i + 2];
+        side(i, dx, dy, dz);
+        if (j < no) side(j, -dx, -dy, -dz);
+    }
+}
+
+void SpatialOperator::add_boundary_fluxes(double* r) const {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    const double* W = W_.data();
+    for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
+        const mesh::BoundaryVertices& bv = dual.boundary[mk];
+        const BoundaryKind kind = kinds_[mk];
+        const double* bn = bv.normals.data();
+        // Nodes ascending: the owned ones come first.
+        for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
+            const Index n = bv.nodes[k];
+            const Vec5 Wn = Eigen::Map<const Vec5>(W + 5 * static_cast<std::size_t>(n));
+            const Vec3 nv(bn[3 * k], bn[3 * k + 1], bn[3 * k + 2]);
+            const Vec5 F = kind == BoundaryKind::farfield ? farfield_flux(Wn, W_inf_, nv, gamma_)
+                                                          : wall_flux(Wn, nv, gamma_);
+            Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(n)) += F;
+        }
+    }
+}
+
+void SpatialOperator::residual(const NodeStates& U, NodeStates& R) {
+    compute_primitive(U);
+    const bool second = options_.order == 2;
+    if (second) {
+        compute_gradients();
+        mirror_symmetry_gradients();
+        if (options_.limiter && !frozen_) compute_limiter();
+        domain_.halo->exchange(gp_, n_gp);
+    }
+
+    if (R.cols() != n_local_) R.resize(5, n_local_);
+    R.setZero();
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const double* x = domain_.mesh->coordinates().data();
+    const double* W = W_.data();
+    const double* gp = gp_.data();
+    const double* sn = dual.edge_normals.data();
+    const auto* edges = dual.edges.data();
+    double* r = R.data();
+    std::int64_t fallbacks = 0;
+
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = edges[e][0], j = edges[e][1];
+        const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        Vec5 WL = Eigen::Map<const Vec5>(W + 5 * static_cast<std::size_t>(i));
+        Vec5 WR = Eigen::Map<const Vec5>(W + 5 * static_cast<std::size_t>(j));
+        Vec5 F;
+        if (second) {
+            const double dx = 0.5 * (x[3 * j] - x[3 * i]), dy = 0.5 * (x[3 * j + 1] - x[3 * i + 1]),
+                         dz = 0.5 * (x[3 * j + 2] - x[3 * i + 2]);
+            const double* gi = gp + n_gp * static_cast<std::size_t>(i);
+            const double* gj = gp + n_gp * static_cast<std::size_t>(j);
+            Vec5 L, Rr;
+            for (int k = 0; k < 5; ++k) {
+                L[k] = WL[k] + gi[phi_offset + k] *
+                                   (gi[3 * k] * dx + gi[3 * k + 1] * dy + gi[3 * k + 2] * dz);
+                Rr[k] = WR[k] - gj[phi_offset + k] *
+                                    (gj[3 * k] * dx + gj[3 * k + 1] * dy + gj[3 * k + 2] * dz);
+            }
+            if (L[0] > 0.0 && L[4] > 0.0 && Rr[0] > 0.0 && Rr[4] > 0.0) {
+                F = numerical_flux(L, Rr, nv, gamma_, options_.flux);
+            } else {
+                ++fallbacks;
+                F = numerical_flux(WL, WR, nv, gamma_, options_.flux);
+            }
+        } else {
+            F = numerical_flux(WL, WR, nv, gamma_, options_.flux);
+        }
+        Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(i)) += F;
+        Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(j)) -= F;
+    }
+    n_fallbacks_ = fallbacks;
+
+    add_boundary_fluxes(r);
+    if (domain_.n_owned < n_local_) R.rightCols(n_local_ - domain_.n_owned).setZero();
+}
+
+void SpatialOperator::spectral_radii(const NodeStates& U, std::vector<double>& lambda) const {
+    MANTA_REQUIRE(U.cols() == n_local_, "euler spectral radii: U needs one column per local node");
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    lambda.assign(static_cast<std::size_t>(no), 0.0);
+    const double* sn = dual.edge_normals.data();
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = dual.edges[e][0], j = dual.edges[e][1];
+        const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        const double s = 0.5 * (spectral_radius(primitive(U.col(i), gamma_), nv, gamma_) +
+                                spectral_radius(primitive(U.col(j), gamma_), nv, gamma_));
+        lambda[i] += s;
+        if (j < no) lambda[j] += s;
+    }
+    for (const mesh::BoundaryVertices& bv : dual.boundary) {
+        for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
+            const Index n = bv.nodes[k];
+            lambda[n] += spectral_radius(primitive(U.col(n), gamma_),
+                                         bv.normals.col(static_cast<Index>(k)), gamma_);
+        }
+    }
+}
+
+void SpatialOperator::jacobian(const NodeStates& U, BlockMatrix& J) const {
+    MANTA_REQUIRE(U.cols() == n_local_, "euler jacobian: U needs one column per local node");
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    MANTA_REQUIRE(J.n_rows() == no && J.n_cols() == n_local_,
+                  "euler jacobian: J needs the pattern of make_jacobian_matrix");
+    J.set_zero();
+    const double* sn = dual.edge_normals.data();
+    Mat5 A, B;
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = dual.edges[e][0], j = dual.edges[e][1];
+        const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        flux_jacobians(primitive(U.col(i), gamma_), primitive(U.col(j), gamma_), nv, gamma_,
+                       options_.flux, A, B);
+        // R_i += F(U_i, U_j), R_j -= F(U_i, U_j).
+        J.add(J.diagonal(i), A);
+        J.add(J.edge_ij(e), B);
+        J.add(J.edge_ji(e), -A);
+        if (j < no) J.add(J.diagonal(j), -B);
+    }
+    for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
+        const mesh::BoundaryVertices& bv = dual.boundary[mk];
+        for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
+            const Index n = bv.nodes[k];
+            const Vec5 Wn = primitive(U.col(n), gamma_);
+            const Vec3 nv = bv.normals.col(static_cast<Index>(k));
+            if (kinds_[mk] == BoundaryKind::farfield) {
+                (void)farfield_flux(Wn, W_inf_, nv, gamma_, &A);
+                J.add(J.diagonal(n), A);
+            } else {
+                J.add(J.diagonal(n), wall_flux_jacobian(Wn, nv, gamma_));
+            }
+        }
+    }
+}
+
+}  // namespace manta::euler
