@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# End-to-end checks of `manta cfd` (docs/euler.md) on the coarse ONERA M6 mesh: help, JSON
+# output and files, a run continued from its restart file, a foreign restart file, bad input
+# (one-line errors, exit 2), and 1 versus 2 MPI processes giving the same converged
+# coefficients. Usage: cfd_cli_test.sh MANTA_BINARY SHARED_DIR WORK_DIR [MPIEXEC]
+set -u
+manta=$1
+shared=$2
+work=$3
+mpiexec=${4:-}
+mpiflags=()
+if [ -n "$mpiexec" ] && "$mpiexec" --version 2>&1 | grep -qiE "open ?mpi|openrte"; then
+    mpiflags=(--oversubscribe --allow-run-as-root)
+fi
+rm -rf "$work"; mkdir -p "$work"
+pass=0; fail=0
+mesh=$shared/reference/onera_m6/mesh_ONERAM6_inv_gmsh_coarse.su2.gz
+if [ ! -f "$mesh" ]; then echo "SKIP: $mesh not found"; exit 0; fi
+
+check() {  # check NAME EXPECTED_EXIT COMMAND...
+    local name=$1 expected=$2; shift 2
+    "$@" >"$work/out.txt" 2>"$work/err.txt"
+    local code=$?
+    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
+        fail=$((fail + 1)); echo "FAIL: $name: exit $code, expected $expected"
+        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | tail -20
+    fi
+}
+contains() {  # contains NAME FILE PATTERN
+    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
+}
+one_line() {  # one_line NAME FILE
+    if [ "$(wc -l < "$2")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: not one line"; cat "$2"; fi
+}
+json() {  # json FILE EXPR: print a value of a JSON file
+    python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"
+}
+
+check "cfd --help" 0 "$manta" cfd --help
+contains "help names --mesh" "$work/out.txt" "--mesh"
+contains "help names mpirun" "$work/out.txt" "mpirun"
+
+printf 'reference: {moment_point: [0.25, 0, 0]}\noutput: {volume: false}\n' > "$work/om6.yaml"
+# Five iterations, then the same command with ten continues from the restart file.
+check "cfd 5 iterations" 0 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 3.06 \
+    --config "$work/om6.yaml" --out "$work/run" --max-iterations 5 --json
+cp "$work/out.txt" "$work/first.json"
+contains "json coefficients" "$work/first.json" '"CL"'
+contains "not converged warning" "$work/err.txt" "not converged"
+for f in summary.json history.csv surface.csv surface.vtu restart.bin; do
+    if [ -s "$work/run/$f" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $f missing"; fi
+done
+if [ ! -e "$work/run/flow.vtu" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: output.volume false ignored"; fi
+contains "history header" "$work/run/history.csv" "^iteration,wall_s,log10_res_rho"
+contains "surface header" "$work/run/surface.csv" "^node,marker,x,y,z,rho,u,v,w,p,Cp,Mach"
+contains "surface wall marker" "$work/run/surface.csv" ",WING,"
+check "cfd continued" 0 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 3.06 \
+    --config "$work/om6.yaml" --out "$work/run" --max-iterations 10 --json
+cp "$work/out.txt" "$work/second.json"
+if [ "$(json "$work/second.json" "j['resumed_from']")" = "5" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: not resumed from 5"; cat "$work/second.json" | head; fi
+rows=$(($(wc -l < "$work/run/history.csv") - 1))
+if [ "$rows" -eq 11 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: history has $rows rows, expected 11 (0..10)"; fi
+
+# A restart file of another flow condition is refused; --restart starts over.
+check "foreign restart" 2 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 2 --out "$work/run" --max-iterations 2
+one_line "foreign restart one line" "$work/err.txt"
+contains "foreign restart says --restart" "$work/err.txt" "--restart"
+check "--restart" 0 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 2 --out "$work/run" --max-iterations 2 --restart
+# --initial: a warm start from another run's solution.
+check "--initial" 0 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 3.06 --out "$work/warm" \
+    --max-iterations 2 --initial "$work/run/restart.bin"
+
+# Bad input: one line, exit 2.
+check "no mach" 2 "$manta" cfd --mesh "$mesh" --out "$work/bad"
+one_line "no mach one line" "$work/err.txt"
+contains "no mach names --mach" "$work/err.txt" "--mach"
+check "mach 0" 2 "$manta" cfd --mesh "$mesh" --mach 0 --out "$work/bad"
+one_line "mach 0 one line" "$work/err.txt"
+printf 'markers: {WINGS: wall}\n' > "$work/badmarker.yaml"
+check "unknown marker" 2 "$manta" cfd --mesh "$mesh" --mach 0.5 --config "$work/badmarker.yaml" --out "$work/bad"
+one_line "unknown marker one line" "$work/err.txt"
+contains "unknown marker named" "$work/err.txt" "WINGS"
+printf 'solver: {cfl_maxx: 5}\n' > "$work/badkey.yaml"
+check "unknown key" 2 "$manta" cfd --mesh "$mesh" --mach 0.5 --config "$work/badkey.yaml" --out "$work/bad"
+contains "unknown key suggestion" "$work/err.txt" "cfl_max"
+printf 'NDIME= 3\nNELEM= 1\n10 0 1 2 7 0\nNPOIN= 3\n0 0 0\n1 0 0\n0 1 0\n' > "$work/broken.su2"
+check "broken mesh" 2 "$manta" cfd --mesh "$work/broken.su2" --mach 0.5 --out "$work/bad"
+one_line "broken mesh one line" "$work/err.txt"
+contains "broken mesh names the file" "$work/err.txt" "broken.su2"
+
+# One and two processes converge to the same coefficients.
+if [ -n "$mpiexec" ]; then
+    check "serial converged" 0 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 3.06 \
+        --config "$work/om6.yaml" --out "$work/np1" --json
+    cp "$work/out.txt" "$work/np1.json"
+    check "mpirun -np 2" 0 "$mpiexec" "${mpiflags[@]}" -n 2 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 3.06 \
+        --config "$work/om6.yaml" --out "$work/np2" --json
+    cp "$work/out.txt" "$work/np2.json"
+    if python3 - "$work/np1.json" "$work/np2.json" <<'PY'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert a["converged"] and b["converged"], (a["reason"], b["reason"])
+assert b["processes"] == 2, b["processes"]
+for k in ("CL", "CD", "CMy"):
+    d = abs(a["coefficients"][k] - b["coefficients"][k])
+    print(f"{k}: 1 process {a['coefficients'][k]:.6f}, 2 processes {b['coefficients'][k]:.6f}, |diff| {d:.2e}")
+    assert d < 2e-5, k
+PY
+    then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: 1 and 2 processes differ"; fi
+fi
+
+echo "cfd_cli_test: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
