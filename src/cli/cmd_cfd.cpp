@@ -162,6 +162,10 @@ int run_cfd(const CfdArgs& a) {
                             "({}; this mesh: {})",
                             a.initial, r.fingerprint, fingerprint));
         scatter(r.U);
+        // The residual drop counts from the peak of the run that computed the initial solution.
+        euler::IterationState st = solver.iteration_state();
+        st.peak_log10_residual = r.state.peak_log10_residual;
+        solver.set_iteration_state(st);
     }
 
     auto write_restart = [&]() {

@@ -80,7 +80,12 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
             }
         }
         if (best) {
+            // The residual drop counts from the peak of the cold run that started the chain, so
+            // a warm start converges to the same level, not 6 orders below its own small start.
             solver.set_state(best->U);
+            IterationState st = solver.iteration_state();
+            st.peak_log10_residual = best->peak_log10_residual;
+            solver.set_iteration_state(st);
             warm = true;
         }
     }
@@ -95,7 +100,8 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
         ++stats_.evaluations;
         stats_.warm_starts += warm ? 1 : 0;
         stats_.iterations += oc.iterations;
-        cache_.push_back({q.mach, q.alpha, q.beta, solver.state()});
+        cache_.push_back({q.mach, q.alpha, q.beta, solver.iteration_state().peak_log10_residual,
+                          solver.state()});
         if (cache_.size() > cache_size_) cache_.erase(cache_.begin());
     }
     const ForceCoefficients& f = oc.forces;

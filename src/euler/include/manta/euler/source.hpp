@@ -51,6 +51,7 @@ public:
 private:
     struct Cached {
         double mach, alpha, beta;
+        double peak_log10_residual;  ///< of the run that computed it (the warm start's reference)
         NodeStates U;
     };
     mesh::Mesh mesh_;

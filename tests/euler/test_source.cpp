@@ -1,0 +1,72 @@
+/// @file test_source.cpp
+/// The Euler solver behind aero::AeroSource (source.hpp): a warm-started evaluation gives the
+/// cold-started result in fewer iterations, body and wind axes are consistent, and queries the
+/// steady solver cannot answer (rates, control deflections) are input errors.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "manta/core/error.hpp"
+#include "manta/euler/config.hpp"
+#include "manta/euler/source.hpp"
+#include "test_meshes.hpp"
+
+namespace {
+
+using namespace manta;
+
+euler::CaseSetup channel_setup(const mesh::Mesh& m) {
+    euler::CfdConfig c;
+    c.markers = {{"lower", euler::BoundaryKind::wall}, {"upper", euler::BoundaryKind::wall}};
+    euler::CaseSetup s;
+    s.roles = euler::resolve_roles(m, c);
+    s.reference.area = 0.1;
+    return s;
+}
+
+TEST(EulerSource, WarmStartGivesTheColdResultInFewerIterations) {
+    const mesh::Mesh m = test::bump_channel(0, 0.1);
+    euler::EulerSource warm(m, channel_setup(m), "bump level 0");
+    euler::EulerSource cold(m, channel_setup(m), "bump level 0");
+    EXPECT_EQ(warm.name(), "euler");
+    EXPECT_EQ(warm.fingerprint(), cold.fingerprint());
+    aero::AeroQuery<double> q;
+    q.mach = 0.5;
+    q.alpha = 0.0;
+    (void)warm.evaluate(q, {});
+    q.alpha = 0.5 * M_PI / 180.0;
+    const aero::SourceResult a = warm.evaluate(q, {});
+    const aero::SourceResult b = cold.evaluate(q, {});
+    const euler::EulerSourceStats ws = warm.stats(), cs = cold.stats();
+    EXPECT_EQ(ws.evaluations, 2);
+    EXPECT_EQ(ws.warm_starts, 1);
+    EXPECT_EQ(cs.warm_starts, 0);
+    // The second warm evaluation's iterations: total minus the first (cold) one at alpha 0.
+    euler::EulerSource first(m, channel_setup(m), "bump level 0");
+    q.alpha = 0.0;
+    (void)first.evaluate(q, {});
+    const int second_warm = ws.iterations - first.stats().iterations;
+    std::printf("iterations: cold %d, warm %d\n", cs.iterations, second_warm);
+    EXPECT_LT(second_warm, cs.iterations);
+    EXPECT_NEAR(a.wind.CL, b.wind.CL, 1e-4);
+    EXPECT_NEAR(a.wind.CD, b.wind.CD, 1e-4);
+    EXPECT_NEAR(a.body.Cm, b.body.Cm, 1e-4);
+    // Body and wind axes: CL = -CZ cos a + CX sin a at zero sideslip.
+    const double al = 0.5 * M_PI / 180.0;
+    EXPECT_NEAR(a.wind.CL, -a.body.CZ * std::cos(al) + a.body.CX * std::sin(al), 1e-12);
+}
+
+TEST(EulerSource, RatesAndControlsAreInputErrors) {
+    const mesh::Mesh m = test::bump_channel(0, 0.1);
+    euler::EulerSource src(m, channel_setup(m), "bump level 0");
+    aero::AeroQuery<double> q;
+    q.mach = 0.5;
+    q.q_hat = 0.01;
+    EXPECT_THROW((void)src.evaluate(q, {}), InputError);
+    q.q_hat = 0.0;
+    q.elevator = 0.1;
+    EXPECT_THROW((void)src.evaluate(q, {}), InputError);
+}
+
+}  // namespace
