@@ -15,26 +15,53 @@
 
 namespace manta::core {
 
-void write_file_atomic(const std::filesystem::path& file, std::string_view content) {
+AtomicFileWriter::AtomicFileWriter(const std::filesystem::path& file) : file_(file) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
     if (ec)
         throw IoError(fmt::format("{}: cannot create directory: {}", file.parent_path().string(),
                                   ec.message()));
-    const fs::path tmp = file.string() + fmt::format(".tmp{}", static_cast<long>(::getpid()));
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw IoError(fmt::format("{}: cannot open for writing", tmp.string()));
-        out.write(content.data(), static_cast<std::streamsize>(content.size()));
-        out.flush();
-        if (!out) throw IoError(fmt::format("{}: write failed", tmp.string()));
-    }
-    fs::rename(tmp, file, ec);
+    tmp_ = file.string() + fmt::format(".tmp{}", static_cast<long>(::getpid()));
+    out_ = std::make_unique<std::ofstream>(tmp_, std::ios::binary | std::ios::trunc);
+    if (!*out_) throw IoError(fmt::format("{}: cannot open for writing", tmp_.string()));
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+    if (committed_) return;
+    out_.reset();
+    std::error_code ec;
+    std::filesystem::remove(tmp_, ec);
+}
+
+void AtomicFileWriter::write(std::string_view text) {
+    out_->write(text.data(), static_cast<std::streamsize>(text.size()));
+    if (!*out_) throw IoError(fmt::format("{}: write failed", tmp_.string()));
+}
+
+void AtomicFileWriter::spill(std::string& buffer, std::size_t threshold) {
+    if (buffer.size() < threshold) return;
+    write(buffer);
+    buffer.clear();
+}
+
+void AtomicFileWriter::commit() {
+    out_->flush();
+    if (!*out_) throw IoError(fmt::format("{}: write failed", tmp_.string()));
+    out_.reset();
+    std::error_code ec;
+    std::filesystem::rename(tmp_, file_, ec);
     if (ec) {
-        fs::remove(tmp);
-        throw IoError(fmt::format("{}: cannot replace file: {}", file.string(), ec.message()));
+        std::filesystem::remove(tmp_);
+        throw IoError(fmt::format("{}: cannot replace file: {}", file_.string(), ec.message()));
     }
+    committed_ = true;
+}
+
+void write_file_atomic(const std::filesystem::path& file, std::string_view content) {
+    AtomicFileWriter w(file);
+    w.write(content);
+    w.commit();
 }
 
 std::string read_file(const std::filesystem::path& file) {

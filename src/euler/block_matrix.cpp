@@ -441,9 +441,63 @@ std::size_t BlockIlu0::memory_bytes() const noexcept {
            capacity_bytes(values_);
 }
 
+// ------------------------------------------------------------------------------ BlockSgs
+
+void BlockSgs::factorize(const BlockMatrix& A) {
+    A_ = &A;
+    const Index n = A.n_rows();
+    dinv_.resize(static_cast<std::size_t>(n) * bb);
+    double d[bb], inv[bb];
+    for (Index r = 0; r < n; ++r) {
+        const Mat5 b = A.block(A.diagonal(r));
+        for (int q = 0; q < bb; ++q) d[q] = b(q / bs, q % bs);
+        if (!invert5(d, inv))
+            throw NumericalError(fmt::format(
+                "block SGS: singular diagonal block in row {} (local node) of the implicit matrix; "
+                "expected an invertible 5x5 block",
+                r));
+        for (int q = 0; q < bb; ++q)
+            dinv_[static_cast<std::size_t>(r) * bb + static_cast<std::size_t>(q)] =
+                static_cast<float>(inv[q]);
+    }
+}
+
+void BlockSgs::apply(std::span<const double> r, std::span<double> z) const noexcept {
+    MANTA_ASSERT(A_ != nullptr);
+    const Index n = A_->n_rows();
+    const auto rows = A_->row_offsets();
+    const auto cols = A_->columns();
+    const float* values = A_->values().data();
+    // Forward: (D + L) w = r, w in z.
+    for (Index i = 0; i < n; ++i) {
+        double acc[bs];
+        for (int c = 0; c < bs; ++c) acc[c] = r[std::size_t{bs} * i + c];
+        for (std::int64_t p = rows[i]; p < A_->diagonal(i); ++p)
+            gemv_sub(values + p * bb, z.data() + std::int64_t{bs} * cols[p], acc);
+        gemv(dinv_.data() + std::int64_t{bb} * i, acc, z.data() + std::int64_t{bs} * i);
+    }
+    // Backward: z = w - D^-1 U z (owned columns only; ghosts are numbered last).
+    for (Index i = n - 1; i >= 0; --i) {
+        double acc[bs] = {0.0, 0.0, 0.0, 0.0, 0.0};
+        bool any = false;
+        for (std::int64_t p = A_->diagonal(i) + 1; p < rows[i + 1] && cols[p] < n; ++p) {
+            gemv_add(values + p * bb, z.data() + std::int64_t{bs} * cols[p], acc);
+            any = true;
+        }
+        if (!any) continue;
+        double corr[bs];
+        gemv(dinv_.data() + std::int64_t{bb} * i, acc, corr);
+        for (int c = 0; c < bs; ++c) z[std::size_t{bs} * i + c] -= corr[c];
+    }
+}
+
+std::size_t BlockSgs::memory_bytes() const noexcept {
+    return sizeof(*this) + capacity_bytes(dinv_);
+}
+
 // ------------------------------------------------------------------------------ Fgmres
 
-KrylovResult Fgmres::solve(const BlockMatrix& A, const BlockIlu0& M, std::span<const double> b,
+KrylovResult Fgmres::solve(const BlockMatrix& A, const Preconditioner& M, std::span<const double> b,
                            std::span<double> x, const parallel::Communicator& comm,
                            const parallel::Halo& halo, const KrylovOptions& options) {
     const int m = std::max(1, options.restart);

@@ -103,6 +103,9 @@ CfdConfig read(const ConfigNode& root) {
                                                   NumberSpec{0.0, 1.0, true, true, "-"});
         v.max_backoffs = static_cast<int>(
             s.integer_or("max_backoffs", v.max_backoffs, NumberSpec::range(0, 100, "-")));
+        v.preconditioner = s.choice_or("preconditioner", "sgs", {"sgs", "ilu0"}) == "sgs"
+                               ? PreconditionerKind::sgs
+                               : PreconditionerKind::ilu0;
         s.finish();
         if (v.cfl_max < v.cfl_initial)
             s.fail("cfl_max", fmt::format("is below cfl = {}", v.cfl_initial), "cfl_max >= cfl");

@@ -129,8 +129,11 @@ SteadySolver::SteadySolver(const Domain& domain, const parallel::Communicator& c
     for (Index i = 0; i < n_local; ++i) U_.col(i) = U_inf;
     R_.setZero(5, n_local);
     J_ = BlockMatrix(domain_.n_owned, n_local, domain_.dual->edges);
+    if (setup_.solver.preconditioner == PreconditionerKind::sgs)
+        precond_ = std::make_unique<BlockSgs>();
+    else
+        precond_ = std::make_unique<BlockIlu0>();
     lambda_.assign(static_cast<std::size_t>(n_local), 0.0);
-    rhs_.assign(5 * static_cast<std::size_t>(n_local), 0.0);
     dU_.assign(5 * static_cast<std::size_t>(n_local), 0.0);
     n_global_nodes_ = static_cast<std::int64_t>(comm_.sum(static_cast<double>(domain_.n_owned)));
     // Round-off level of the density residual: 1e-12 of the free-stream mass flux through a
@@ -267,10 +270,10 @@ std::vector<double> SteadySolver::mach_number() const {
 }
 
 std::size_t SteadySolver::memory_bytes() const noexcept {
-    const std::size_t states = 3 * static_cast<std::size_t>(U_.size()) * sizeof(double);
-    const std::size_t vecs =
-        (lambda_.capacity() + rhs_.capacity() + dU_.capacity()) * sizeof(double);
-    return states + vecs + J_.memory_bytes() + ilu_.memory_bytes() + krylov_.memory_bytes() +
+    const std::size_t states = 2 * static_cast<std::size_t>(U_.size()) * sizeof(double) +
+                               U_good_.capacity() * sizeof(float);
+    const std::size_t vecs = (lambda_.capacity() + dU_.capacity()) * sizeof(double);
+    return states + vecs + J_.memory_bytes() + precond_->memory_bytes() + krylov_.memory_bytes() +
            op_.memory_bytes() + (op_first_ ? op_first_->memory_bytes() : 0);
 }
 
@@ -289,7 +292,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
     double stall_best = std::numeric_limits<double>::infinity();
     int stall_since = it_.iteration;
     double cfl_good = it_.cfl;
-    U_good_ = U_;
+    U_good_.assign(U_.data(), U_.data() + U_.size());
     if (it_.limiter_frozen) op_.freeze_limiter(true);
 
     auto back_off = [&](const std::string& why) {
@@ -300,7 +303,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
                 "(CFL {:.3g}); try a smaller solver.cfl_max, first-order start iterations "
                 "(solver.first_order_iterations) or order 1",
                 domain_.mesh->source(), it_.iteration, why, s.max_backoffs, it_.cfl));
-        U_ = U_good_;
+        std::copy(U_good_.begin(), U_good_.end(), U_.data());
         cfl_cap = std::max(s.cfl_initial * 0.1, 0.25 * std::min(it_.cfl, cfl_cap));
         it_.cfl = std::max(0.1 * cfl_good, 0.1);
         cfl_good = it_.cfl;
@@ -396,7 +399,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
         }
         previous = res;
         if (res <= best + 0.5 && it_.iteration % 5 == 0) {
-            U_good_ = U_;
+            std::copy(U_.data(), U_.data() + U_.size(), U_good_.begin());
             cfl_good = it_.cfl;
         }
 
@@ -408,7 +411,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
         // A singular pivot on any process sends every process back (the same decision on all).
         std::string pivot_error;
         try {
-            ilu_.factorize(J_);
+            precond_->factorize(J_);
         } catch (const NumericalError& e) {
             pivot_error = e.what();
         }
@@ -416,10 +419,11 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
             back_off(pivot_error.empty() ? "singular ILU pivot on another process" : pivot_error);
             continue;
         }
-        for (Index i = 0; i < n_owned; ++i)
-            for (int k = 0; k < 5; ++k) rhs_[5 * static_cast<std::size_t>(i) + k] = -R_(k, i);
+        // J dU = R (R's owned columns are the right-hand side), then U -= dU.
         std::fill(dU_.begin(), dU_.end(), 0.0);
-        const KrylovResult kr = krylov_.solve(J_, ilu_, rhs_, dU_, comm_, *domain_.halo, s.linear);
+        const KrylovResult kr = krylov_.solve(
+            J_, *precond_, std::span<const double>(R_.data(), static_cast<std::size_t>(R_.size())),
+            dU_, comm_, *domain_.halo, s.linear);
         rec.linear_iterations = kr.iterations;
         rec.linear_residual = kr.relative_residual;
 
@@ -427,7 +431,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
         // above 20 % are scaled down).
         bool bad = false;
         for (Index i = 0; i < n_owned; ++i) {
-            const Eigen::Map<const Vec5> d(dU_.data() + 5 * static_cast<std::size_t>(i));
+            const Vec5 d = -Eigen::Map<const Vec5>(dU_.data() + 5 * static_cast<std::size_t>(i));
             if (!d.allFinite()) {
                 bad = true;
                 break;

@@ -36,33 +36,48 @@ void footer(std::string& s) {
 void write_vtu_volume(const std::filesystem::path& file, const Mesh& mesh,
                       const std::vector<VtuField>& node_fields) {
     for (const auto& f : node_fields) check_field(mesh, f, mesh.n_nodes(), "node");
+    // Written in pieces of a few MiB (a large mesh's text would otherwise double the memory).
+    core::AtomicFileWriter out(file);
     std::string s;
     header(s, mesh.n_nodes(), mesh.n_cells());
     for (Index i = 0; i < mesh.n_nodes(); ++i) {
         const auto p = mesh.node(i);
         s += fmt::format("{} {} {}\n", p.x(), p.y(), p.z());
+        out.spill(s);
     }
     s += "</DataArray>\n</Points>\n<Cells>\n";
     s += "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (Index c = 0; c < mesh.n_cells(); ++c)
+    for (Index c = 0; c < mesh.n_cells(); ++c) {
         s += fmt::format("{}\n", fmt::join(mesh.cell(c), " "));
+        out.spill(s);
+    }
     s += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    for (Index c = 0; c < mesh.n_cells(); ++c) s += fmt::format("{}\n", mesh.cell_offsets()[c + 1]);
+    for (Index c = 0; c < mesh.n_cells(); ++c) {
+        s += fmt::format("{}\n", mesh.cell_offsets()[c + 1]);
+        out.spill(s);
+    }
     s += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
     for (Index c = 0; c < mesh.n_cells(); ++c)
         s += fmt::format("{}\n", static_cast<int>(mesh.cell_type(c)));
     s += "</DataArray>\n</Cells>\n<CellData>\n";
     s += "<DataArray type=\"Float64\" Name=\"volume\" format=\"ascii\">\n";
-    for (Index c = 0; c < mesh.n_cells(); ++c) s += fmt::format("{}\n", mesh.cell_volume(c));
+    for (Index c = 0; c < mesh.n_cells(); ++c) {
+        s += fmt::format("{}\n", mesh.cell_volume(c));
+        out.spill(s);
+    }
     s += "</DataArray>\n</CellData>\n<PointData>\n";
     for (const auto& f : node_fields) {
         s += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", f.name);
-        for (double v : f.values) s += fmt::format("{}\n", v);
+        for (double v : f.values) {
+            s += fmt::format("{}\n", v);
+            out.spill(s);
+        }
         s += "</DataArray>\n";
     }
     s += "</PointData>\n";
     footer(s);
-    core::write_file_atomic(file, s);
+    out.write(s);
+    out.commit();
 }
 
 void write_vtu_surface(const std::filesystem::path& file, const Mesh& mesh,

@@ -4,6 +4,8 @@
 /// never sees half a file) and numeric CSV tables with located errors.
 
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,6 +14,30 @@ namespace manta::core {
 
 /// Write `content` to `file` atomically; creates parent directories. IoError on failure.
 void write_file_atomic(const std::filesystem::path& file, std::string_view content);
+
+/// A file written piece by piece and made visible at once: the pieces go to a temporary beside
+/// `file`, which `commit` renames over it; destroyed without `commit`, the temporary is removed
+/// and `file` is unchanged. For outputs too large to assemble in memory first. IoError on
+/// failure, naming the file.
+class AtomicFileWriter {
+public:
+    explicit AtomicFileWriter(const std::filesystem::path& file);
+    ~AtomicFileWriter();
+    AtomicFileWriter(const AtomicFileWriter&) = delete;
+    AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+    /// Append `text`.
+    void write(std::string_view text);
+    /// Append `buffer` and clear it when it holds at least `threshold` bytes.
+    void spill(std::string& buffer, std::size_t threshold = std::size_t{1} << 22);
+    /// Flush, close and rename over the target.
+    void commit();
+
+private:
+    std::filesystem::path file_;
+    std::filesystem::path tmp_;
+    std::unique_ptr<std::ofstream> out_;
+    bool committed_ = false;
+};
 
 /// Read a whole text file. IoError on failure.
 [[nodiscard]] std::string read_file(const std::filesystem::path& file);
