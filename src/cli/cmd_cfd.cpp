@@ -238,7 +238,8 @@ int run_cfd(const CfdArgs& a) {
     const std::vector<double> prim = parallel::gather_owned(local, prim_local, 5, comm);
     const std::vector<double> cp = parallel::gather_owned(local, cp_local, 1, comm);
     const std::vector<double> machs = parallel::gather_owned(local, mach_local, 1, comm);
-    const double memory = comm.sum(peak_rss_bytes());
+    const double own_peak = peak_rss_bytes();
+    double memory = comm.sum(own_peak);
     const double solver_memory = comm.sum(static_cast<double>(solver.memory_bytes()));
     if (!root) return 0;
 
@@ -261,6 +262,8 @@ int run_cfd(const CfdArgs& a) {
     }
     if (cfg.output.volume) mesh::write_vtu_volume(out / "flow.vtu", out_mesh, fields);
 
+    // The outputs are written: this process's peak may have grown while writing them.
+    memory += peak_rss_bytes() - own_peak;
     const double wall = std::chrono::duration<double>(clock::now() - t_start).count();
     nlohmann::json j;
     j["manta_version"] = core::version();
