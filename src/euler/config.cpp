@@ -59,8 +59,14 @@ CfdConfig read(const ConfigNode& root) {
     }
     if (auto n = top.optional_child("numerics")) {
         ConfigMap m(*n);
-        const std::string flux = m.choice_or("flux", "roe", {"roe", "hllc"});
-        c.spatial.flux.scheme = flux == "hllc" ? FluxScheme::hllc : FluxScheme::roe;
+        const std::string flux = m.choice_or("flux", "roe", {"roe", "hllc", "jst"});
+        c.spatial.flux.scheme = flux == "hllc"  ? FluxScheme::hllc
+                                : flux == "jst" ? FluxScheme::jst
+                                                : FluxScheme::roe;
+        c.spatial.flux.jst_k2 =
+            m.number_or("jst_k2", c.spatial.flux.jst_k2, NumberSpec::range(0, 2, "-"));
+        c.spatial.flux.jst_k4 =
+            m.number_or("jst_k4", c.spatial.flux.jst_k4, NumberSpec::range(0, 0.5, "-"));
         c.spatial.flux.entropy_fix =
             m.number_or("entropy_fix", c.spatial.flux.entropy_fix, NumberSpec::range(0, 1, "-"));
         c.spatial.order = static_cast<int>(m.integer_or("order", 2, NumberSpec::range(1, 2, "-")));

@@ -35,7 +35,10 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label)
         "euler {} mesh={} [{}] roles={} order={} flux={} gradient={} limiter={} K={} fix={} "
         "gamma={} drop={} ref=({},{},{},{},{},{})",
         core::version(), label, mesh_fingerprint(mesh_, ids, mesh_.n_nodes(), comm), roles, o.order,
-        o.flux.scheme == FluxScheme::roe ? "roe" : "hllc",
+        o.flux.scheme == FluxScheme::roe ? std::string("roe")
+        : o.flux.scheme == FluxScheme::hllc
+            ? std::string("hllc")
+            : fmt::format("jst(k2={},k4={})", o.flux.jst_k2, o.flux.jst_k4),
         o.gradient == GradientMethod::least_squares ? "lsq" : "gg", o.limiter, o.venkatakrishnan_k,
         o.flux.entropy_fix, setup_.flow.gamma, s.residual_drop, r.area, r.chord, r.span,
         r.moment_point.x(), r.moment_point.y(), r.moment_point.z());

@@ -2,7 +2,8 @@
 /// The edge-based residual (spatial.hpp): four sweeps per second-order residual, each over flat
 /// arrays: primitive states (nodes), gradient sums and neighbourhood extrema (edges), the
 /// limiter (edges), one halo exchange of gradients and limiters, then the fluxes (edges) and
-/// the boundary fluxes (boundary nodes).
+/// the boundary fluxes (boundary nodes). JST: one node sweep (Laplacians, sensor, spectral
+/// radii; edges), one halo exchange, then the central fluxes with their dissipation (edges).
 
 #include "manta/euler/spatial.hpp"
 
@@ -55,6 +56,13 @@ void SpatialOptions::validate() const {
         throw ConfigError(fmt::format(
             "numerics.entropy_fix = {}; expected a fraction of the spectral radius in [0, 1]",
             flux.entropy_fix));
+    if (!(flux.jst_k2 >= 0.0 && flux.jst_k2 <= 2.0))
+        throw ConfigError(fmt::format(
+            "numerics.jst_k2 = {}; expected a number in [0, 2] (SU2's default 0.5)", flux.jst_k2));
+    if (!(flux.jst_k4 >= 0.0 && flux.jst_k4 <= 0.5))
+        throw ConfigError(
+            fmt::format("numerics.jst_k4 = {}; expected a number in [0, 0.5] (SU2's default 0.02)",
+                        flux.jst_k4));
 }
 
 SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kinds,
@@ -97,7 +105,9 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
     const auto nl = static_cast<std::size_t>(n_local_);
     const auto no = static_cast<std::size_t>(d.n_owned);
     W_.assign(5 * nl, 0.0);
-    if (options_.order == 2) {
+    const bool jst = options_.flux.scheme == FluxScheme::jst;
+    if (jst) init_jst();
+    if (options_.order == 2 && !jst) {
         gp_.assign(n_gp * nl, 0.0);
         for (std::size_t n = 0; n < nl; ++n)
             std::fill_n(gp_.begin() + static_cast<std::ptrdiff_t>(n_gp * n + phi_offset), 5, 1.0);
@@ -115,7 +125,7 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
             }
         }
     }
-    if (options_.order == 2 && options_.gradient == GradientMethod::least_squares) {
+    if (options_.order == 2 && !jst && options_.gradient == GradientMethod::least_squares) {
         // Normal matrices M_i = sum_j w dx dx^T, w = 1 / |dx|^2, over the edges of owned nodes.
         std::vector<double> M(6 * no, 0.0);
         const double* x = m.coordinates().data();
@@ -164,9 +174,11 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
 
 std::size_t SpatialOperator::memory_bytes() const noexcept {
     return (W_.capacity() + gp_.capacity() + minmax_.capacity() + lsq_.capacity() +
-            symmetry_normals_.capacity()) *
+            symmetry_normals_.capacity() + jst_.capacity() + jst_neighbours_.capacity() +
+            jst_work_.capacity()) *
                sizeof(double) +
-           symmetry_nodes_.capacity() * sizeof(Index) + kinds_.capacity() * sizeof(BoundaryKind);
+           symmetry_nodes_.capacity() * sizeof(Index) + kinds_.capacity() * sizeof(BoundaryKind) +
+           jst_boundary_.capacity();
 }
 
 BlockMatrix SpatialOperator::make_jacobian_matrix() const {
@@ -375,6 +387,10 @@ void SpatialOperator::add_boundary_fluxes(double* r) const {
 
 void SpatialOperator::residual(const NodeStates& U, NodeStates& R) {
     compute_primitive(U);
+    if (options_.flux.scheme == FluxScheme::jst) {
+        residual_jst(R);
+        return;
+    }
     const bool second = options_.order == 2;
     if (second) {
         compute_gradients();
@@ -460,6 +476,11 @@ void SpatialOperator::jacobian(const NodeStates& U, BlockMatrix& J) const {
     MANTA_REQUIRE(J.n_rows() == no && J.n_cols() == n_local_,
                   "euler jacobian: J needs the pattern of make_jacobian_matrix");
     J.set_zero();
+    if (options_.flux.scheme == FluxScheme::jst) {
+        jacobian_jst(U, J);
+        add_boundary_jacobians(U, J);
+        return;
+    }
     const double* sn = dual.edge_normals.data();
     Mat5 A, B;
     for (Index e = 0; e < n_edges_active_; ++e) {
@@ -473,6 +494,13 @@ void SpatialOperator::jacobian(const NodeStates& U, BlockMatrix& J) const {
         J.add(J.edge_ji(e), -A);
         if (j < no) J.add(J.diagonal(j), -B);
     }
+    add_boundary_jacobians(U, J);
+}
+
+void SpatialOperator::add_boundary_jacobians(const NodeStates& U, BlockMatrix& J) const {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    Mat5 A;
     for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
         const mesh::BoundaryVertices& bv = dual.boundary[mk];
         for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
@@ -486,6 +514,226 @@ void SpatialOperator::jacobian(const NodeStates& U, BlockMatrix& J) const {
                 J.add(J.diagonal(n), wall_flux_jacobian(Wn, nv, gamma_));
             }
         }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// JST (spatial.hpp): jst_ holds per local node L (5), nu, lambda, NL.
+
+namespace {
+
+constexpr int n_jst = 8;
+
+/// V = (rho, rho u, rho v, rho w, rho H) of a primitive state; gg = gamma / (gamma - 1).
+inline Vec5 jst_variables(const double* W, double gg) noexcept {
+    Vec5 V;
+    V[0] = W[0];
+    V[1] = W[0] * W[1];
+    V[2] = W[0] * W[2];
+    V[3] = W[0] * W[3];
+    V[4] = gg * W[4] + 0.5 * W[0] * (W[1] * W[1] + W[2] * W[2] + W[3] * W[3]);
+    return V;
+}
+
+/// Spectral radius |u.n| + c |n| of a primitive state given as a pointer.
+inline double radius(const double* W, const Vec3& n, double gamma) noexcept {
+    return std::abs(W[1] * n.x() + W[2] * n.y() + W[3] * n.z()) +
+           std::sqrt(gamma * W[4] / W[0]) * n.norm();
+}
+
+/// dV/dU: the identity with the last row d(rho H)/dU = ((g-1) q^2/2, -(g-1) u, gamma).
+inline Mat5 jst_transform(const Vec5& W, double gamma) noexcept {
+    const double g1 = gamma - 1.0;
+    Mat5 T = Mat5::Identity();
+    T(4, 0) = 0.5 * g1 * (W[1] * W[1] + W[2] * W[2] + W[3] * W[3]);
+    T(4, 1) = -g1 * W[1];
+    T(4, 2) = -g1 * W[2];
+    T(4, 3) = -g1 * W[3];
+    T(4, 4) = gamma;
+    return T;
+}
+
+/// The JST edge coefficients: e2, e4 and S l_ij (the stretching factor times the edge's
+/// spectral radius). `ni`, `nj`: the nodes' (all) neighbour counts; `ti`, `tj`: their node
+/// terms (jst_ entries); `li`, `lj`: the two nodes' spectral radii on the edge face.
+struct JstCoefficients {
+    double s2, e2, e4, s_lambda;
+};
+inline JstCoefficients jst_coefficients(double ni, double nj, const double* ti, const double* tj,
+                                        double li, double lj, double k2, double k4) noexcept {
+    const double s2 = 3.0 * (ni + nj) / (ni * nj);
+    const double e2 = k2 * 0.5 * (ti[5] + tj[5]) * s2;
+    const double e4 = std::max(0.0, k4 - e2) * 0.25 * s2 * s2;
+    const double lij = 0.5 * (li + lj);
+    double s_lambda = 0.0;
+    if (lij > 0.0) {
+        const double pi = std::pow(ti[6] / (4.0 * lij), 0.3);
+        const double pj = std::pow(tj[6] / (4.0 * lij), 0.3);
+        // Before any residual (lambda = 0) the stretching factor is taken as 1.
+        const double S = pi + pj > 0.0 ? 4.0 * pi * pj / (pi + pj) : 1.0;
+        s_lambda = S * lij;
+    }
+    return {s2, e2, e4, s_lambda};
+}
+
+}  // namespace
+
+void SpatialOperator::init_jst() {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    const auto nl = static_cast<std::size_t>(n_local_);
+    jst_.assign(n_jst * nl, 0.0);
+    jst_work_.assign(static_cast<std::size_t>(no), 0.0);
+    // Boundary flags and neighbour counts of the owned nodes (their edges are all local), then
+    // the ghosts' from their owners.
+    std::vector<double> flags(2 * nl, 0.0);
+    for (const mesh::BoundaryVertices& bv : dual.boundary)
+        for (const Index n : bv.nodes)
+            if (n < no) flags[2 * static_cast<std::size_t>(n)] = 1.0;
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = dual.edges[e][0], j = dual.edges[e][1];
+        flags[2 * static_cast<std::size_t>(i) + 1] += 1.0;
+        if (j < no) flags[2 * static_cast<std::size_t>(j) + 1] += 1.0;
+    }
+    domain_.halo->exchange(flags, 2);
+    jst_boundary_.assign(nl, 0);
+    jst_neighbours_.assign(nl, 0.0);
+    for (std::size_t n = 0; n < nl; ++n) {
+        jst_boundary_[n] = flags[2 * n] > 0.5 ? 1 : 0;
+        jst_neighbours_[n] = std::max(flags[2 * n + 1], 1.0);
+    }
+}
+
+void SpatialOperator::compute_jst_node_terms() {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    const double gg = gamma_ / (gamma_ - 1.0);
+    const double* W = W_.data();
+    const double* sn = dual.edge_normals.data();
+    double* t = jst_.data();
+    double* den = jst_work_.data();
+    std::fill_n(t, n_jst * static_cast<std::size_t>(no), 0.0);
+    std::fill(jst_work_.begin(), jst_work_.end(), 0.0);
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = dual.edges[e][0], j = dual.edges[e][1];
+        const double* Wi = W + 5 * static_cast<std::size_t>(i);
+        const double* Wj = W + 5 * static_cast<std::size_t>(j);
+        const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        const double s = 0.5 * (radius(Wi, nv, gamma_) + radius(Wj, nv, gamma_));
+        const bool bi = jst_boundary_[static_cast<std::size_t>(i)] != 0;
+        const bool bj = jst_boundary_[static_cast<std::size_t>(j)] != 0;
+        const Vec5 dV = jst_variables(Wj, gg) - jst_variables(Wi, gg);
+        const double dp = Wj[4] - Wi[4], sp = Wj[4] + Wi[4];
+        double* ti = t + n_jst * static_cast<std::size_t>(i);
+        ti[6] += s;
+        // A boundary node's Laplacian and sensor see only its boundary neighbours.
+        if (!bi || bj) {
+            for (int k = 0; k < 5; ++k) ti[k] += dV[k];
+            ti[5] += dp;
+            ti[7] += 1.0;
+            den[i] += sp;
+        }
+        if (j < no) {
+            double* tj = t + n_jst * static_cast<std::size_t>(j);
+            tj[6] += s;
+            if (!bj || bi) {
+                for (int k = 0; k < 5; ++k) tj[k] -= dV[k];
+                tj[5] -= dp;
+                tj[7] += 1.0;
+                den[j] += sp;
+            }
+        }
+    }
+    for (const mesh::BoundaryVertices& bv : dual.boundary) {
+        const double* bn = bv.normals.data();
+        for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
+            const Index n = bv.nodes[k];
+            const Vec3 nv(bn[3 * k], bn[3 * k + 1], bn[3 * k + 2]);
+            t[n_jst * static_cast<std::size_t>(n) + 6] +=
+                radius(W + 5 * static_cast<std::size_t>(n), nv, gamma_);
+        }
+    }
+    for (Index n = 0; n < no; ++n) {
+        double* tn = t + n_jst * static_cast<std::size_t>(n);
+        tn[5] = den[n] > 0.0 ? std::abs(tn[5]) / den[n] : 0.0;
+    }
+    domain_.halo->exchange(jst_, n_jst);
+}
+
+void SpatialOperator::residual_jst(NodeStates& R) {
+    compute_jst_node_terms();
+    if (R.cols() != n_local_) R.resize(5, n_local_);
+    R.setZero();
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const double gg = gamma_ / (gamma_ - 1.0);
+    const double k2 = options_.flux.jst_k2, k4 = options_.flux.jst_k4;
+    const double* W = W_.data();
+    const double* t = jst_.data();
+    const double* sn = dual.edge_normals.data();
+    double* r = R.data();
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = dual.edges[e][0], j = dual.edges[e][1];
+        const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        const double* Wi = W + 5 * static_cast<std::size_t>(i);
+        const double* Wj = W + 5 * static_cast<std::size_t>(j);
+        const Vec5 Vi = jst_variables(Wi, gg), Vj = jst_variables(Wj, gg);
+        // Central flux of the mean density, velocity, pressure and total enthalpy (as SU2).
+        const double rho = 0.5 * (Wi[0] + Wj[0]);
+        const Vec3 u(0.5 * (Wi[1] + Wj[1]), 0.5 * (Wi[2] + Wj[2]), 0.5 * (Wi[3] + Wj[3]));
+        const double H = 0.5 * (Vi[4] / Wi[0] + Vj[4] / Wj[0]);
+        const double mass = rho * u.dot(nv);
+        Vec5 F;
+        F[0] = mass;
+        F.segment<3>(1) = mass * u + (0.5 * (Wi[4] + Wj[4])) * nv;
+        F[4] = mass * H;
+        const double* ti = t + n_jst * static_cast<std::size_t>(i);
+        const double* tj = t + n_jst * static_cast<std::size_t>(j);
+        const JstCoefficients c =
+            jst_coefficients(jst_neighbours_[static_cast<std::size_t>(i)],
+                             jst_neighbours_[static_cast<std::size_t>(j)], ti, tj,
+                             radius(Wi, nv, gamma_), radius(Wj, nv, gamma_), k2, k4);
+        for (int k = 0; k < 5; ++k)
+            F[k] += (c.e2 * (Vi[k] - Vj[k]) - c.e4 * (ti[k] - tj[k])) * c.s_lambda;
+        Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(i)) += F;
+        Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(j)) -= F;
+    }
+    n_fallbacks_ = 0;
+    add_boundary_fluxes(r);
+    if (domain_.n_owned < n_local_) R.rightCols(n_local_ - domain_.n_owned).setZero();
+}
+
+void SpatialOperator::jacobian_jst(const NodeStates& U, BlockMatrix& J) const {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    const double k2 = options_.flux.jst_k2, k4 = options_.flux.jst_k4;
+    const double* t = jst_.data();
+    const double* sn = dual.edge_normals.data();
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const Index i = dual.edges[e][0], j = dual.edges[e][1];
+        const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        const Vec5 Wi = primitive(U.col(i), gamma_), Wj = primitive(U.col(j), gamma_);
+        const double* ti = t + n_jst * static_cast<std::size_t>(i);
+        const double* tj = t + n_jst * static_cast<std::size_t>(j);
+        const JstCoefficients c =
+            jst_coefficients(jst_neighbours_[static_cast<std::size_t>(i)],
+                             jst_neighbours_[static_cast<std::size_t>(j)], ti, tj,
+                             radius(Wi.data(), nv, gamma_), radius(Wj.data(), nv, gamma_), k2, k4);
+        // d(-(L_i - L_j))/dU_i = NL_i + [U_i enters L_j]; likewise for j.
+        const bool bi = jst_boundary_[static_cast<std::size_t>(i)] != 0;
+        const bool bj = jst_boundary_[static_cast<std::size_t>(j)] != 0;
+        const double ai = ti[7] + ((!bj || bi) ? 1.0 : 0.0);
+        const double aj = tj[7] + ((!bi || bj) ? 1.0 : 0.0);
+        // Lower bound of the dissipation coefficient: k2 s2 / 4 (spatial.hpp).
+        const double e_min = 0.25 * k2 * c.s2;
+        const Mat5 A = 0.5 * physical_flux_jacobian(Wi, nv, gamma_) +
+                       (std::max(e_min, c.e2 + c.e4 * ai) * c.s_lambda) * jst_transform(Wi, gamma_);
+        const Mat5 B = 0.5 * physical_flux_jacobian(Wj, nv, gamma_) -
+                       (std::max(e_min, c.e2 + c.e4 * aj) * c.s_lambda) * jst_transform(Wj, gamma_);
+        // R_i += F(U_i, U_j), R_j -= F(U_i, U_j).
+        J.add(J.diagonal(i), A);
+        J.add(J.edge_ij(e), B);
+        J.add(J.edge_ji(e), -A);
+        if (j < no) J.add(J.diagonal(j), -B);
     }
 }
 

@@ -16,6 +16,12 @@ namespace manta::euler {
 enum class FluxScheme {
     roe,   ///< Roe's flux difference splitting, Harten's entropy fix on all waves
     hllc,  ///< Toro's HLLC, wave speeds from Roe averages (Einfeldt estimates)
+    /// Jameson-Schmidt-Turkel central scheme with blended second- and fourth-difference scalar
+    /// dissipation (Jameson, Schmidt & Turkel, AIAA 81-1259, 1981; edge form of Mavriplis &
+    /// Jameson, AIAA J. 28, 1990). Not a point-wise flux: it needs the neighbourhood (undivided
+    /// Laplacians, pressure sensor), so SpatialOperator evaluates it (spatial.hpp);
+    /// `numerical_flux` and `flux_jacobians` treat it as Roe.
+    jst,
 };
 
 /// Options of the interior flux.
@@ -27,6 +33,12 @@ struct FluxOptions {
     /// fix on, stationary contacts and shocks get a dissipation of order d; without it Roe
     /// resolves them exactly but forms expansion shocks at sonic points (docs/euler.md).
     double entropy_fix = 0.05;
+    /// JST second-difference coefficient k2 (shock capturing, scaled by the pressure sensor);
+    /// SU2's default 0.5. JST only.
+    double jst_k2 = 0.5;
+    /// JST fourth-difference coefficient k4 (background dissipation in smooth regions, switched
+    /// off where k2 times the sensor exceeds it); SU2's default 0.02. JST only.
+    double jst_k4 = 0.02;
 };
 
 /// Physical Euler flux F(W).n.

@@ -32,6 +32,29 @@
 /// becomes (G + S G S) / 2 (d u_t / dn and d u_n / dt removed), once per symmetry marker at the
 /// node.
 ///
+/// JST (`FluxScheme::jst`; Jameson, Schmidt & Turkel, AIAA 81-1259, 1981; the edge form of
+/// Mavriplis & Jameson, AIAA J. 28, 1990; the variant of SU2 v8): the order, gradients and
+/// limiter are not used. Per edge (i, j) through n_ij the flux is the central flux of the mean
+/// density, velocity, pressure and total enthalpy (each the mean of the two nodes' values) plus
+/// the dissipation D_ij = (e2 (V_i - V_j) - e4 (L_i - L_j)) S_ij l_ij on
+/// V = (rho, rho u, rho v, rho w, rho H), where
+/// - L_i = sum_j (V_j - V_i) is the undivided Laplacian and nu_i = |sum_j (p_j - p_i)| /
+///   sum_j (p_j + p_i) the pressure sensor; at a boundary node (on any marker) both sums run
+///   over its boundary neighbours only, at interior nodes over all neighbours;
+/// - e2 = k2 (nu_i + nu_j) / 2 s2, e4 = max(0, k4 - e2) s2^2 / 4, s2 = 3 (N_i + N_j) / (N_i
+///   N_j) with N the number of neighbours (all of them);
+/// - l_ij = (|u_i.n| + c_i |n| + |u_j.n| + c_j |n|) / 2 the edge's spectral radius and
+///   S_ij = 4 phi_i phi_j / (phi_i + phi_j), phi_i = (lambda_i / (4 l_ij))^0.3 the stretching
+///   factor, lambda_i the node's summed spectral radius (`spectral_radii`).
+/// Its implicit operator (`jacobian`): dF/dU_i = A(U_i) / 2 + c_i T(U_i), dF/dU_j = A(U_j) / 2 -
+/// c_j T(U_j), T = dV/dU, c_i = max(k2 s2 / 4, e2 + e4 (NL_i + b_ij)) S_ij l_ij with NL_i the
+/// number of Laplacian neighbours of i and b_ij = 1 if U_i enters L_j (else 0), sensor, S and l
+/// frozen: the scalar first-order form that SU2 assembles (exact diagonal blocks at a uniform
+/// state, the distance-two couplings of the Laplacian dropped), with a lower bound k2 s2 / 4 on
+/// the coefficient. Without the bound the coefficient in smooth flow is e4 (N + 1), of order
+/// 0.01, the operator is nearly central, and on the bump channel the ILU(0)-preconditioned
+/// linear solves stall once the CFL number passes about 100 (docs/euler.md).
+///
 /// Partition-local meshes (docs/parallel.md): nodes [0, n_owned) are owned, the rest ghosts.
 /// Edges between two ghosts are skipped; residuals, gradients and limiters are computed for
 /// owned nodes, the ghosts' gradients and limiters come from one halo exchange per residual.
@@ -64,6 +87,7 @@ enum class GradientMethod {
 /// Options of the spatial discretisation.
 struct SpatialOptions {
     /// 1 (node states on the edges) or 2 (MUSCL reconstruction of the primitive variables).
+    /// Not used by JST, which is second order by construction.
     int order = 2;
     /// Gradient method of the reconstruction (order 2).
     GradientMethod gradient = GradientMethod::least_squares;
@@ -78,7 +102,8 @@ struct SpatialOptions {
     FluxOptions flux;
 
     /// ConfigError (one line naming the option, the value and what was expected) if the order
-    /// is not 1 or 2, K is not positive and finite, or the entropy-fix width is not in [0, 1].
+    /// is not 1 or 2, K is not positive and finite, the entropy-fix width is not in [0, 1],
+    /// jst_k2 not in [0, 2] or jst_k4 not in [0, 0.5].
     void validate() const;
 };
 
@@ -99,7 +124,8 @@ public:
     /// `kinds`: one per mesh marker (Mesh::markers() order); `W_inf`: free-stream primitive
     /// state (gas.hpp); `gamma`: ratio of specific heats. Precomputes the least-squares
     /// matrices. InputError if the domain is incomplete, `kinds` has the wrong length, the free
-    /// stream is not physical or gamma <= 1; ConfigError from `o.validate()`.
+    /// stream is not physical or gamma <= 1; ConfigError from `o.validate()`. JST: one halo
+    /// exchange (boundary flags, neighbour counts), so every process constructs it together.
     SpatialOperator(const Domain& d, std::vector<BoundaryKind> kinds, const Vec5& W_inf,
                     double gamma, const SpatialOptions& o);
 
@@ -115,7 +141,9 @@ public:
 
     /// The first-order implicit operator dR/dU: `flux_jacobians` of every edge at the node
     /// states and the boundary flux Jacobians on the diagonal, whatever the order of `residual`
-    /// (the usual defect-correction approximation). J must have the pattern of
+    /// (the usual defect-correction approximation); JST: its own scalar-dissipation Jacobian
+    /// (above), with the sensor and spectral radii of the last `residual`, so call `residual`
+    /// at the same U first. J must have the pattern of
     /// `make_jacobian_matrix` (dual->edges, n_rows = n_owned); it is set to zero first.
     void jacobian(const NodeStates& U, BlockMatrix& J) const;
 
@@ -146,6 +174,11 @@ public:
 
 private:
     void compute_primitive(const NodeStates& U);
+    void init_jst();
+    void compute_jst_node_terms();
+    void residual_jst(NodeStates& R);
+    void jacobian_jst(const NodeStates& U, BlockMatrix& J) const;
+    void add_boundary_jacobians(const NodeStates& U, BlockMatrix& J) const;
     void compute_gradients();
     void mirror_symmetry_gradients();
     void compute_limiter();
@@ -167,6 +200,12 @@ private:
     std::vector<double> lsq_;     ///< 6 per owned node: inverse normal matrix, xx xy xz yy yz zz
     std::vector<mesh::Index> symmetry_nodes_;  ///< owned nodes on symmetry markers (one per marker)
     std::vector<double> symmetry_normals_;     ///< 3 per entry of symmetry_nodes_: unit normal
+    /// JST, 8 per local node: undivided Laplacian of V (5), pressure sensor, summed spectral
+    /// radius, number of Laplacian neighbours (ghosts: exchanged).
+    std::vector<double> jst_;
+    std::vector<double> jst_neighbours_;  ///< JST, per local node: number of neighbours
+    std::vector<char> jst_boundary_;      ///< JST, per local node: on a marker (1) or not (0)
+    std::vector<double> jst_work_;        ///< JST, per owned node: sensor denominator
 };
 
 }  // namespace manta::euler
