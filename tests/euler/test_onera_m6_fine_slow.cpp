@@ -12,6 +12,7 @@
 #include "manta/mesh/dual.hpp"
 #include "manta/mesh/readers.hpp"
 #include "manta/mesh/reorder.hpp"
+#include "onera_m6_case.hpp"
 
 namespace {
 
@@ -26,14 +27,8 @@ TEST(OneraM6Fine, LiftAgainstSu2) {
     parallel::SerialHalo halo;
     parallel::SerialCommunicator comm;
     euler::CaseSetup setup;
-    setup.flow.mach = 0.8395;
-    setup.flow.alpha = 3.06 * M_PI / 180.0;
-    for (const std::string& name : m.markers()) {
-        euler::BoundaryKind k{};
-        ASSERT_TRUE(euler::default_role(name, k)) << name;
-        setup.roles.push_back(k);
-    }
-    setup.reference.moment_point = {0.25, 0.0, 0.0};
+    test::onera_m6_setup(m, setup);
+    if (HasFatalFailure()) return;
     euler::SteadySolver solver({&m, &dual, m.n_nodes(), &halo}, comm, setup);
     EXPECT_NEAR(solver.reference_area(), 0.757168, 0.002 * 0.757168);
     const euler::SolveOutcome oc = solver.solve();

@@ -14,6 +14,7 @@
 #include "manta/euler/solver.hpp"
 #include "manta/mesh/dual.hpp"
 #include "manta/mesh/readers.hpp"
+#include "onera_m6_case.hpp"
 
 namespace {
 
@@ -29,14 +30,8 @@ TEST(OneraM6Validation, CoarseMeshLiftWithinOnePercentOfSu2) {
     parallel::SerialHalo halo;
     parallel::SerialCommunicator comm;
     euler::CaseSetup setup;
-    setup.flow.mach = 0.8395;
-    setup.flow.alpha = 3.06 * M_PI / 180.0;
-    for (const std::string& name : m.markers()) {
-        euler::BoundaryKind k{};
-        ASSERT_TRUE(euler::default_role(name, k)) << name;
-        setup.roles.push_back(k);
-    }
-    setup.reference.moment_point = {0.25, 0.0, 0.0};
+    test::onera_m6_setup(m, setup);
+    if (HasFatalFailure()) return;
     euler::SteadySolver solver({&m, &dual, m.n_nodes(), &halo}, comm, setup);
     // SU2's REF_AREA = 0: the z-projection of the wing.
     EXPECT_NEAR(solver.reference_area(), 0.749716, 0.002 * 0.749716);
