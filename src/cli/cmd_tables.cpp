@@ -19,7 +19,11 @@
 #include "manta/core/io.hpp"
 #include "manta/core/units.hpp"
 #include "manta/core/version.hpp"
+#include "manta/euler/config.hpp"
+#include "manta/euler/source.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
+#include "manta/mesh/readers.hpp"
+#include "manta/mesh/reorder.hpp"
 #include "manta/tables/analytic_source.hpp"
 #include "manta/tables/campaign.hpp"
 #include "manta/tables/export.hpp"
@@ -170,6 +174,28 @@ nlohmann::json report_json(const tables::ScenarioReport& r) {
     return j;
 }
 
+/// The Euler source of a campaign: the mesh (nodes in reverse Cuthill-McKee order, as `manta
+/// cfd` uses them) and the `manta cfd` configuration's roles, reference values, numerics and
+/// solver settings; the flow condition comes from each sample.
+std::unique_ptr<aero::AeroSource> make_euler_source(const tables::SourceSpec& spec) {
+    if (!std::filesystem::exists(spec.mesh))
+        throw ConfigError(
+            fmt::format("{}: mesh file '{}' does not exist; expected a mesh that "
+                        "manta cfd reads (SU2, gmsh, CGNS)",
+                        spec.where, spec.mesh.string()));
+    euler::CfdConfig cfg;
+    if (!spec.cfd_config.empty()) cfg = euler::read_cfd_config(spec.cfd_config);
+    mesh::Mesh m = mesh::reorder_reverse_cuthill_mckee(mesh::read_mesh(spec.mesh)).mesh;
+    euler::CaseSetup setup;
+    setup.flow.gamma = cfg.gamma;
+    setup.reference = cfg.reference;
+    setup.spatial = cfg.spatial;
+    setup.solver = cfg.solver;
+    setup.roles = euler::resolve_roles(m, cfg);
+    return std::make_unique<euler::EulerSource>(std::move(m), std::move(setup),
+                                                spec.mesh.filename().string());
+}
+
 int run_tables(const TablesArgs& a) {
     if (a.restart && a.accept_changed_source)
         throw InputError("tables: --restart and --accept-changed-source exclude each other");
@@ -180,6 +206,8 @@ int run_tables(const TablesArgs& a) {
     std::unique_ptr<aero::AeroSource> source;
     if (campaign.source.type == tables::SourceType::analytic) {
         source = std::make_unique<tables::AnalyticSource>(campaign.source.analytic);
+    } else if (campaign.source.type == tables::SourceType::euler) {
+        source = make_euler_source(campaign.source);
     } else {
         const auto& spec = campaign.source;
         if (!std::filesystem::exists(spec.aircraft))

@@ -177,14 +177,17 @@ SourceSpec read_source(ConfigMap& m, const std::filesystem::path& base) {
     SourceSpec s;
     s.where = m.node().where();
     const std::string type = m.choice("type", {"analytic", "vlm", "euler"});
-    if (type == "euler") {
-        m.fail("type", "names a source that is not available yet",
-               "analytic or vlm (the Euler solver comes in a later release)");
-    }
-    s.type = type == "vlm" ? SourceType::vlm : SourceType::analytic;
-    if (s.type == SourceType::vlm) {
-        const std::filesystem::path a = m.string("aircraft");
-        s.aircraft = a.is_absolute() || base.empty() ? a : base / a;
+    s.type = type == "vlm"     ? SourceType::vlm
+             : type == "euler" ? SourceType::euler
+                               : SourceType::analytic;
+    auto resolve = [&](const std::filesystem::path& p) {
+        return p.is_absolute() || base.empty() ? p : base / p;
+    };
+    if (s.type == SourceType::euler) {
+        s.mesh = resolve(m.string("mesh"));
+        if (m.has("config")) s.cfd_config = resolve(m.string("config"));
+    } else if (s.type == SourceType::vlm) {
+        s.aircraft = resolve(m.string("aircraft"));
         if (m.has("lattice")) {
             ConfigMap l = m.map("lattice");
             s.n_chord = static_cast<int>(
@@ -278,7 +281,16 @@ Campaign parse_campaign(std::string_view text, const std::string& source,
         c.static_table.beta = default_beta;
         c.static_table.kriging.seed = c.static_table.seed;
     }
+    // The Euler solver has no moving or deforming meshes yet: no deflections, no rotation rates.
+    const char* euler_static_only =
+        "no '{}' section with source type euler, which gives static coefficients only (source "
+        "type vlm fills it)";
     if (root.has("controls")) {
+        if (c.source.type == SourceType::euler)
+            root.fail("controls",
+                      "needs control-surface deflections, which the euler source does "
+                      "not model (no moving or deforming meshes yet)",
+                      fmt::format(fmt::runtime(euler_static_only), "controls"));
         ConfigMap ctl = root.map("controls");
         for (const aero::Axis a : {aero::Axis::elevator, aero::Axis::aileron, aero::Axis::rudder}) {
             const std::string key(aero::to_string(a));
@@ -289,6 +301,11 @@ Campaign parse_campaign(std::string_view text, const std::string& source,
         ctl.finish();
     }
     if (root.has("dynamic")) {
+        if (c.source.type == SourceType::euler)
+            root.fail("dynamic",
+                      "needs rotation rates, which the euler source does not model (no "
+                      "moving meshes yet)",
+                      fmt::format(fmt::runtime(euler_static_only), "dynamic"));
         ConfigMap d = root.map("dynamic");
         DynamicPlan p;
         p.alpha = read_axis(d, "alpha", true, -core::pi / 2, core::pi / 2, "rad")

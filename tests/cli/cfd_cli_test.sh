@@ -88,6 +88,38 @@ check "broken mesh" 2 "$manta" cfd --mesh "$work/broken.su2" --mach 0.5 --out "$
 one_line "broken mesh one line" "$work/err.txt"
 contains "broken mesh names the file" "$work/err.txt" "broken.su2"
 
+# A table campaign on the Euler source (static coefficients; docs/tables.md): four samples at
+# two Mach numbers, each after the first warm-started; a rerun reuses every sample.
+cat > "$work/campaign.yaml" <<EOF
+schema_version: 1
+name: om6-euler
+source: {type: euler, mesh: $mesh}
+static:
+  alpha_deg: [0, 2, 4]
+  mach: [0.5, 0.7]
+  beta_deg: [0]
+  initial_design: {size: 4, seed: 1}
+  budget: 4
+EOF
+check "tables on the euler source" 0 "$manta" tables --campaign "$work/campaign.yaml" --out "$work/tab" --json
+contains "euler tables evaluated 4" "$work/out.txt" '"evaluated": 4'
+if python3 - "$work/tab/samples.csv" <<'PY'
+import csv, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["status"] == "done"]
+assert len(rows) == 4, len(rows)
+for r in rows:
+    a, cl = float(r["alpha_deg"]), float(r["CL"])
+    # Symmetric section: no lift at zero incidence; about 3.5 per radian of the wing's lift slope.
+    assert (abs(cl) < 2e-3) if a == 0 else (0.03 * a < cl < 0.1 * a), (a, cl)
+    assert r["source"] == "euler", r["source"]
+PY
+then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: euler table samples"; fi
+check "euler tables rerun" 0 "$manta" tables --campaign "$work/campaign.yaml" --out "$work/tab" --json
+contains "euler tables rerun reuses" "$work/out.txt" '"evaluated": 0'
+printf 'controls:\n  elevator: {deflection_deg: [-5, 0, 5]}\n' >> "$work/campaign.yaml"
+check "euler tables with controls" 2 "$manta" tables --campaign "$work/campaign.yaml" --out "$work/tab2"
+contains "euler controls message" "$work/err.txt" "campaign.yaml:10: key 'controls'.*static coefficients only"
+
 # One and two processes converge to the same coefficients.
 if [ -n "$mpiexec" ]; then
     check "serial converged" 0 "$manta" cfd --mesh "$mesh" --mach 0.8395 --alpha-deg 3.06 \

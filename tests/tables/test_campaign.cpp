@@ -118,10 +118,24 @@ TEST(Campaign, UnknownKeyIsNamedWithLineAndSuggestion) {
     EXPECT_NE(m.find("did you mean 'budget'"), std::string::npos) << m;
 }
 
-TEST(Campaign, EulerSourceIsNotAvailableYet) {
-    const std::string m = error_of("schema_version: 1\nname: t\nsource: {type: euler}\n");
-    EXPECT_NE(m.find("not available yet"), std::string::npos) << m;
-    EXPECT_NE(m.find("euler"), std::string::npos) << m;
+TEST(Campaign, EulerSourceNeedsAMeshAndGivesStaticTablesOnly) {
+    // The mesh is required and resolved against the campaign's folder, like an aircraft file.
+    EXPECT_NE(error_of("schema_version: 1\nname: t\nsource: {type: euler}\n").find("'source.mesh'"),
+              std::string::npos);
+    const Campaign c = parse_campaign(
+        "schema_version: 1\nname: t\nsource: {type: euler, mesh: m.su2, config: cfd.yaml}\n",
+        "c.yaml", "/cases");
+    EXPECT_EQ(c.source.type, SourceType::euler);
+    EXPECT_EQ(c.source.mesh, std::filesystem::path("/cases/m.su2"));
+    EXPECT_EQ(c.source.cfd_config, std::filesystem::path("/cases/cfd.yaml"));
+    // No control deflections and no rotation rates (no moving meshes yet): refused at reading.
+    const std::string head = "schema_version: 1\nname: t\nsource: {type: euler, mesh: m.su2}\n";
+    const std::string mc = error_of(head + "controls:\n  elevator: {deflection_deg: [-5, 0, 5]}\n");
+    EXPECT_NE(mc.find("c.yaml:4"), std::string::npos) << mc;
+    EXPECT_NE(mc.find("'controls'"), std::string::npos) << mc;
+    EXPECT_NE(mc.find("static coefficients only"), std::string::npos) << mc;
+    const std::string md = error_of(head + "dynamic: {rate_step: 0.01}\n");
+    EXPECT_NE(md.find("'dynamic'"), std::string::npos) << md;
 }
 
 TEST(Campaign, BadValuesAreReportedWithTheirExpectation) {

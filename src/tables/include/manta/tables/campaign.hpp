@@ -27,8 +27,10 @@ struct SourceSpec {
     int n_chord = 6;                 ///< vlm lattice: chordwise vortices per strip
     double strip_width = 0.04;       ///< vlm lattice: strip width / reference span
     bool viscous = true;             ///< vlm: add the viscous drag build-up
-    AnalyticParameters analytic;     ///< analytic: the test function's parameters
-    std::string where;               ///< "file:line: key 'source'" for messages
+    std::filesystem::path mesh;      ///< euler: the mesh file, resolved like `aircraft`
+    std::filesystem::path cfd_config;  ///< euler: `manta cfd` configuration (empty: defaults)
+    AnalyticParameters analytic;       ///< analytic: the test function's parameters
+    std::string where;                 ///< "file:line: key 'source'" for messages
 };
 
 /// How the adaptive static campaign chooses its next samples.
