@@ -354,6 +354,15 @@ void BlockMatrix::add_to_diagonal(Index r, double s) noexcept {
     for (int k = 0; k < bs; ++k) a[(bs + 1) * k] += static_cast<float>(s);
 }
 
+void BlockMatrix::transform_row(Index r, const Mat5& T) noexcept {
+    for (std::int64_t q = rows_[r]; q < rows_[r + 1]; ++q) {
+        const Mat5 b = T * block(q);
+        float* a = values_.data() + q * bb;
+        for (int i = 0; i < bs; ++i)
+            for (int c = 0; c < bs; ++c) a[bs * i + c] = static_cast<float>(b(i, c));
+    }
+}
+
 Mat5 BlockMatrix::block(std::int64_t position) const noexcept {
     const float* a = values_.data() + position * bb;
     Mat5 m;

@@ -63,6 +63,10 @@ CfdConfig read(const ConfigNode& root) {
         c.spatial.flux.scheme = flux == "hllc"  ? FluxScheme::hllc
                                 : flux == "jst" ? FluxScheme::jst
                                                 : FluxScheme::roe;
+        const std::string wall = m.choice_or("wall", "auto", {"auto", "weak", "strong"});
+        c.spatial.wall = wall == "weak"     ? WallTangency::weak
+                         : wall == "strong" ? WallTangency::strong
+                                            : WallTangency::automatic;
         c.spatial.flux.jst_k2 =
             m.number_or("jst_k2", c.spatial.flux.jst_k2, NumberSpec::range(0, 2, "-"));
         c.spatial.flux.jst_k4 =

@@ -315,6 +315,8 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
         const bool first_order = op_first_ && it_.iteration < s.first_order_iterations;
         SpatialOperator& op = first_order ? *op_first_ : op_;
         op.residual(U_, R_);
+        op.spectral_radii(U_, lambda_);
+        op.apply_wall_tangency(U_, lambda_, R_);
         const std::array<double, 5> rms = rms_residual();
         IterationRecord rec;
         rec.iteration = it_.iteration;
@@ -404,10 +406,10 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
         }
 
         // (V / dt + dR/dU) dU = -R with dt_i = CFL V_i / lambda_i.
-        op.spectral_radii(U_, lambda_);
         op.jacobian(U_, J_);
         for (Index i = 0; i < n_owned; ++i)
             J_.add_to_diagonal(i, lambda_[static_cast<std::size_t>(i)] / it_.cfl);
+        op.apply_wall_tangency(lambda_, it_.cfl, J_);
         // A singular pivot on any process sends every process back (the same decision on all).
         std::string pivot_error;
         try {

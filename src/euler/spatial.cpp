@@ -107,6 +107,7 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
     W_.assign(5 * nl, 0.0);
     const bool jst = options_.flux.scheme == FluxScheme::jst;
     if (jst) init_jst();
+    if (options_.strong_walls()) init_wall_tangency();
     if (options_.order == 2 && !jst) {
         gp_.assign(n_gp * nl, 0.0);
         for (std::size_t n = 0; n < nl; ++n)
@@ -382,6 +383,68 @@ void SpatialOperator::add_boundary_fluxes(double* r) const {
                                                           : wall_flux(Wn, nv, gamma_);
             Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(n)) += F;
         }
+    }
+}
+
+void SpatialOperator::init_wall_tangency() {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    // Each owned node's wall and symmetry normals, in marker order.
+    std::vector<std::vector<Vec3>> normals(static_cast<std::size_t>(no));
+    for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
+        if (kinds_[mk] == BoundaryKind::farfield) continue;
+        const mesh::BoundaryVertices& bv = dual.boundary[mk];
+        for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
+            const Vec3 n = bv.normals.col(static_cast<Index>(k));
+            if (n.norm() > 0.0) normals[static_cast<std::size_t>(bv.nodes[k])].push_back(n);
+        }
+    }
+    tangency_.clear();
+    for (Index i = 0; i < no; ++i) {
+        const auto& ns = normals[static_cast<std::size_t>(i)];
+        if (ns.empty()) continue;
+        TangencyNode t{i, 0, {}};
+        // Gram-Schmidt; a normal within about 3 degrees of the span of the earlier ones adds
+        // no condition (two markers meeting at a shallow angle).
+        for (const Vec3& n : ns) {
+            Vec3 v = n.normalized();
+            for (int k = 0; k < t.count; ++k)
+                v -= t.e[static_cast<std::size_t>(k)].dot(v) * t.e[static_cast<std::size_t>(k)];
+            if (v.norm() > 0.05 && t.count < 3)
+                t.e[static_cast<std::size_t>(t.count++)] = v.normalized();
+        }
+        tangency_.push_back(t);
+    }
+}
+
+void SpatialOperator::apply_wall_tangency(const NodeStates& U, const std::vector<double>& lambda,
+                                          NodeStates& R) const {
+    for (const TangencyNode& t : tangency_) {
+        const double lam = lambda[static_cast<std::size_t>(t.node)];
+        const Vec3 m = U.col(t.node).segment<3>(1);
+        Vec3 r = R.col(t.node).segment<3>(1);
+        Vec3 c = Vec3::Zero();
+        for (int k = 0; k < t.count; ++k) {
+            const Vec3& e = t.e[static_cast<std::size_t>(k)];
+            r -= e.dot(r) * e;
+            c += lam * e.dot(m) * e;
+        }
+        R.col(t.node).segment<3>(1) = r + c;
+    }
+}
+
+void SpatialOperator::apply_wall_tangency(const std::vector<double>& lambda, double cfl,
+                                          BlockMatrix& J) const {
+    for (const TangencyNode& t : tangency_) {
+        Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
+        for (int k = 0; k < t.count; ++k)
+            N += t.e[static_cast<std::size_t>(k)] * t.e[static_cast<std::size_t>(k)].transpose();
+        Mat5 T = Mat5::Identity();
+        T.block<3, 3>(1, 1) -= N;
+        J.transform_row(t.node, T);
+        Mat5 A = Mat5::Zero();
+        A.block<3, 3>(1, 1) = (1.0 + 1.0 / cfl) * lambda[static_cast<std::size_t>(t.node)] * N;
+        J.add(J.diagonal(t.node), A);
     }
 }
 

@@ -53,6 +53,8 @@ public:
     void add(std::int64_t position, const Mat5& b) noexcept;
     /// Add `s` to the diagonal entries of the diagonal block of row `r`.
     void add_to_diagonal(Index r, double s) noexcept;
+    /// Left-multiply every block of owned row `r` by `T`.
+    void transform_row(Index r, const Mat5& T) noexcept;
     /// The block at `position` (row-major, single precision).
     [[nodiscard]] Mat5 block(std::int64_t position) const noexcept;
 

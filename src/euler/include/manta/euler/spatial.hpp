@@ -55,10 +55,22 @@
 /// 0.01, the operator is nearly central, and on the bump channel the ILU(0)-preconditioned
 /// linear solves stall once the CFL number passes about 100 (docs/euler.md).
 ///
+/// Wall tangency (`SpatialOptions::wall`). Weak (the default of the upwind fluxes): a wall or
+/// symmetry node's boundary flux is the pressure flux (0, p n, 0) and u.n = 0 holds only as the
+/// discrete solution converges. Strong (the default of JST, as SU2 v8.1 does it; Blazek,
+/// Computational Fluid Dynamics: Principles and Applications, 3rd ed., 2015, sec. 8.6): at
+/// such a node the momentum residual keeps only its part tangent to the node's wall and
+/// symmetry normals (orthonormalised when a node lies on two markers), and the removed
+/// components are replaced by the conditions lambda_i (rho u . e_k) = 0, so the implicit
+/// iteration drives the normal velocity to zero (`apply_wall_tangency`). At a sharp trailing
+/// edge the node's normal is the small sum of both sides' normals, nearly streamwise, and the
+/// strong condition makes the node a stagnation point (Cp about 1 there, as in SU2 v8.1).
+///
 /// Partition-local meshes (docs/parallel.md): nodes [0, n_owned) are owned, the rest ghosts.
 /// Edges between two ghosts are skipped; residuals, gradients and limiters are computed for
 /// owned nodes, the ghosts' gradients and limiters come from one halo exchange per residual.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -84,6 +96,13 @@ enum class GradientMethod {
     least_squares,  ///< inverse-distance-weighted least squares, 3x3 per node precomputed
 };
 
+/// How slip walls and symmetry planes impose u.n = 0 (above).
+enum class WallTangency {
+    automatic,  ///< strong with JST, weak with the upwind fluxes
+    weak,       ///< through the pressure flux only
+    strong,     ///< normal momentum residual replaced by the tangency condition
+};
+
 /// Options of the spatial discretisation.
 struct SpatialOptions {
     /// 1 (node states on the edges) or 2 (MUSCL reconstruction of the primitive variables).
@@ -100,6 +119,14 @@ struct SpatialOptions {
     double venkatakrishnan_k = 5.0;
     /// Interior numerical flux.
     FluxOptions flux;
+    /// Wall and symmetry tangency.
+    WallTangency wall = WallTangency::automatic;
+
+    /// Whether walls and symmetry planes impose tangency strongly with these options.
+    [[nodiscard]] bool strong_walls() const noexcept {
+        return wall == WallTangency::strong ||
+               (wall == WallTangency::automatic && flux.scheme == FluxScheme::jst);
+    }
 
     /// ConfigError (one line naming the option, the value and what was expected) if the order
     /// is not 1 or 2, K is not positive and finite, the entropy-fix width is not in [0, 1],
@@ -147,6 +174,16 @@ public:
     /// `make_jacobian_matrix` (dual->edges, n_rows = n_owned); it is set to zero first.
     void jacobian(const NodeStates& U, BlockMatrix& J) const;
 
+    /// Strong wall tangency (above), after `residual`: at every owned wall or symmetry node,
+    /// R_m <- P R_m + lambda_i sum_k e_k (e_k . rho u) with P = I - sum_k e_k e_k^T on the
+    /// momentum rows. `lambda`: `spectral_radii` at the same U. Nothing with weak tangency.
+    void apply_wall_tangency(const NodeStates& U, const std::vector<double>& lambda,
+                             NodeStates& R) const;
+    /// The same rows of the implicit matrix J = V/dt + dR/dU (time term included, dt_i =
+    /// CFL V_i / lambda_i): every block of the row left-multiplied by blockdiag(1, P, 1), and
+    /// (1 + 1/CFL) lambda_i sum_k e_k e_k^T added to the diagonal block's momentum part.
+    void apply_wall_tangency(const std::vector<double>& lambda, double cfl, BlockMatrix& J) const;
+
     /// A matrix with the pattern `jacobian` expects (n_owned rows, n_local columns).
     [[nodiscard]] BlockMatrix make_jacobian_matrix() const;
 
@@ -183,6 +220,7 @@ private:
     void mirror_symmetry_gradients();
     void compute_limiter();
     void add_boundary_fluxes(double* r) const;
+    void init_wall_tangency();
 
     Domain domain_;
     std::vector<BoundaryKind> kinds_;
@@ -194,6 +232,13 @@ private:
     bool frozen_ = false;
     std::int64_t n_fallbacks_ = 0;
 
+    /// Strong tangency: the owned wall and symmetry nodes and their orthonormal normals.
+    struct TangencyNode {
+        mesh::Index node;
+        int count;              ///< 1 to 3 directions
+        std::array<Vec3, 3> e;  ///< orthonormal
+    };
+    std::vector<TangencyNode> tangency_;
     std::vector<double> W_;       ///< 5 per local node: primitive states
     std::vector<double> gp_;      ///< 20 per local node: gradient (5x3, row-major) then phi (5)
     std::vector<double> minmax_;  ///< 10 per owned node: neighbourhood min (5), max (5) of W
