@@ -291,6 +291,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
     double cfl_cap = s.cfl_max;
     double stall_best = std::numeric_limits<double>::infinity();
     int stall_since = it_.iteration;
+    int cycle_since = it_.iteration;  ///< iteration of the lowest residual so far
     double cfl_good = it_.cfl;
     U_good_.assign(U_.data(), U_.data() + U_.size());
     if (it_.limiter_frozen) op_.freeze_limiter(true);
@@ -332,6 +333,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
                          : fmt::format("density residual 10^{:.2f}, 10^5 times its lowest", res));
             continue;
         }
+        if (res < best) cycle_since = it_.iteration;
         best = std::min(best, res);
         if (!first_order) it_.peak_log10_residual = std::max(it_.peak_log10_residual, res);
         const double drop = first_order ? 0.0 : it_.peak_log10_residual - res;
@@ -390,6 +392,18 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
             ((s.freeze_limiter_drop > 0 && drop >= s.freeze_limiter_drop) || stalled)) {
             op_.freeze_limiter(true);
             it_.limiter_frozen = true;
+            stall_best = res;
+            stall_since = it_.iteration;
+        } else if (it_.limiter_frozen && s.freeze_limiter_stall > 0 && !first_order &&
+                   it_.iteration - cycle_since >= s.freeze_limiter_stall &&
+                   cfl_cap > s.cfl_initial) {
+            // No new lowest residual for as many iterations with the operator fixed: the
+            // first-order implicit operator does not steer the second-order residual at this
+            // CFL number (a defect-correction cycle; slow but steady progress is not one). A
+            // smaller CFL number damps it.
+            cfl_cap = std::max(s.cfl_initial, 0.1 * cfl_cap);
+            it_.cfl = std::min(it_.cfl, cfl_cap);
+            cycle_since = it_.iteration;
         }
 
         // CFL: grow while the residual falls, cut when it rises.
