@@ -71,6 +71,7 @@ CfdConfig read(const ConfigNode& root) {
             m.number_or("jst_k2", c.spatial.flux.jst_k2, NumberSpec::range(0, 2, "-"));
         c.spatial.flux.jst_k4 =
             m.number_or("jst_k4", c.spatial.flux.jst_k4, NumberSpec::range(0, 0.5, "-"));
+        c.spatial.flux.low_mach_fix = m.boolean_or("low_mach_fix", c.spatial.flux.low_mach_fix);
         c.spatial.flux.entropy_fix =
             m.number_or("entropy_fix", c.spatial.flux.entropy_fix, NumberSpec::range(0, 1, "-"));
         c.spatial.order = static_cast<int>(m.integer_or("order", 2, NumberSpec::range(1, 2, "-")));

@@ -77,8 +77,17 @@ inline double enthalpy(const Vec5& W, double gg) noexcept {
     return gg * W[4] / W[0] + 0.5 * W.segment<3>(1).squaredNorm();
 }
 
-/// Roe's flux (Roe 1981, J. Comput. Phys. 43) with Harten's entropy fix of width `fix`.
-Vec5 roe_flux(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma, double fix) noexcept {
+/// Rieper's factor z = min(1, max(M_L, M_R)) of two primitive states.
+inline double low_mach_factor(const Vec5& WL, const Vec5& WR, double gamma) noexcept {
+    const double m2L = WL.segment<3>(1).squaredNorm() * WL[0] / (gamma * WL[4]);
+    const double m2R = WR.segment<3>(1).squaredNorm() * WR[0] / (gamma * WR[4]);
+    return std::min(1.0, std::sqrt(std::max(m2L, m2R)));
+}
+
+/// Roe's flux (Roe 1981, J. Comput. Phys. 43) with Harten's entropy fix of width `fix` and, if
+/// `low_mach`, Rieper's low-Mach fix.
+Vec5 roe_flux(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma, double fix,
+              bool low_mach) noexcept {
     const double area = n.norm();
     const double ig = 1.0 / (gamma - 1.0), gg = gamma * ig;
     const Vec3 uL = WL.segment<3>(1), uR = WR.segment<3>(1);
@@ -93,8 +102,16 @@ Vec5 roe_flux(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma, doubl
     const double dVn = (uR - uL).dot(r.nh);
     const double inv2c2 = 0.5 / (r.c * r.c);
     const double rc = r.rho * r.c;
-    const double a1 = (dp - rc * dVn) * inv2c2 * (r.l1 - r.l2);
-    const double a5 = (dp + rc * dVn) * inv2c2 * (r.l5 - r.l2);
+    double a1 = (dp - rc * dVn) * inv2c2 * (r.l1 - r.l2);
+    double a5 = (dp + rc * dVn) * inv2c2 * (r.l5 - r.l2);
+    if (low_mach) {
+        // Acoustic strengths with z d(u.n) in place of d(u.n): with the entropy and shear waves
+        // still dU minus the unmodified acoustic waves, |A| dU gains l1 (1 - z) s r1 and loses
+        // l5 (1 - z) s r5, s = rho c d(u.n) / (2 c^2).
+        const double sv = (1.0 - low_mach_factor(WL, WR, gamma)) * rc * dVn * inv2c2;
+        a1 += r.l1 * sv;
+        a5 -= r.l5 * sv;
+    }
     const Vec3 mL = WL[0] * uL, mR = WR[0] * uR;
     const double EL = WL[4] * ig + 0.5 * mL.dot(uL);
     const double ER = WR[4] * ig + 0.5 * mR.dot(uR);
@@ -206,7 +223,7 @@ Vec5 physical_flux(const Vec5& W, const Vec3& n, double gamma) noexcept {
 Vec5 numerical_flux(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma,
                     const FluxOptions& options) noexcept {
     if (options.scheme == FluxScheme::hllc) return hllc_flux(WL, WR, n, gamma);
-    return roe_flux(WL, WR, n, gamma, options.entropy_fix);
+    return roe_flux(WL, WR, n, gamma, options.entropy_fix, options.low_mach_fix);
 }
 
 Mat5 physical_flux_jacobian(const Vec5& W, const Vec3& n, double gamma) noexcept {
@@ -247,6 +264,11 @@ void flux_jacobians(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma,
     R1 << 1.0, r.u - r.c * r.nh, r.H - r.c * r.Vn;
     R5 << 1.0, r.u + r.c * r.nh, r.H + r.c * r.Vn;
     Mat5 D = ((r.l1 - r.l2) * inv2c2) * R1 * (Lp - Lc) + ((r.l5 - r.l2) * inv2c2) * R5 * (Lp + Lc);
+    if (options.low_mach_fix && options.scheme == FluxScheme::roe) {
+        // Rieper's fix with z frozen: + (1 - z) (l1 R1 - l5 R5) Lc / (2 c^2).
+        const double w = (1.0 - low_mach_factor(WL, WR, gamma)) * inv2c2;
+        D += (w * r.l1) * R1 * Lc - (w * r.l5) * R5 * Lc;
+    }
     D.diagonal().array() += r.l2;
     dF_dUL = 0.5 * (physical_flux_jacobian(WL, n, gamma) + D);
     dF_dUR = 0.5 * (physical_flux_jacobian(WR, n, gamma) - D);

@@ -32,14 +32,15 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label)
     std::vector<std::int64_t> ids(static_cast<std::size_t>(mesh_.n_nodes()));
     for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::int64_t>(i);
     fingerprint_ = fmt::format(
-        "euler {} mesh={} [{}] roles={} order={} flux={} wall={} gradient={} limiter={} K={} fix={} "
+        "euler {} mesh={} [{}] roles={} order={} flux={} wall={} low_mach={} gradient={} "
+        "limiter={} K={} fix={} "
         "gamma={} drop={} ref=({},{},{},{},{},{})",
         core::version(), label, mesh_fingerprint(mesh_, ids, mesh_.n_nodes(), comm), roles, o.order,
         o.flux.scheme == FluxScheme::roe ? std::string("roe")
         : o.flux.scheme == FluxScheme::hllc
             ? std::string("hllc")
             : fmt::format("jst(k2={},k4={})", o.flux.jst_k2, o.flux.jst_k4),
-        o.strong_walls() ? "strong" : "weak",
+        o.strong_walls() ? "strong" : "weak", o.flux.low_mach_fix,
         o.gradient == GradientMethod::least_squares ? "lsq" : "gg", o.limiter, o.venkatakrishnan_k,
         o.flux.entropy_fix, setup_.flow.gamma, s.residual_drop, r.area, r.chord, r.span,
         r.moment_point.x(), r.moment_point.y(), r.moment_point.z());

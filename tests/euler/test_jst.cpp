@@ -142,3 +142,16 @@ TEST(JstConfig, WallTangencyKey) {
             << e.what();
     }
 }
+
+TEST(CfdConfig, LowMachFixKey) {
+    EXPECT_FALSE(
+        euler::parse_cfd_config("numerics: {flux: roe}\n", "c.yaml").spatial.flux.low_mach_fix);
+    EXPECT_TRUE(euler::parse_cfd_config("numerics: {low_mach_fix: true}\n", "c.yaml")
+                    .spatial.flux.low_mach_fix);
+    try {
+        (void)euler::parse_cfd_config("numerics:\n  low_mach_fix: maybe\n", "c.yaml");
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("c.yaml:2"), std::string::npos) << e.what();
+    }
+}

@@ -33,6 +33,12 @@ struct FluxOptions {
     /// fix on, stationary contacts and shocks get a dissipation of order d; without it Roe
     /// resolves them exactly but forms expansion shocks at sonic points (docs/euler.md).
     double entropy_fix = 0.05;
+    /// Rieper's low-Mach fix of Roe's flux (J. Comput. Phys. 230, 5263-5287, 2011): the normal
+    /// velocity jump in the acoustic waves' strengths is scaled by z = min(1, max(M_L, M_R)),
+    /// the local Mach numbers of the two states, which removes the O(1/M) excess dissipation
+    /// of the pressure field at low Mach numbers (spurious drag). Roe only; its Jacobian (frozen
+    /// z) is part of `flux_jacobians`.
+    bool low_mach_fix = false;
     /// JST second-difference coefficient k2 (shock capturing, scaled by the pressure sensor);
     /// SU2's default 0.5. JST only.
     double jst_k2 = 0.5;
