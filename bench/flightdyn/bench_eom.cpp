@@ -8,12 +8,16 @@
 //
 // Figures to read: items_per_second of BM_euler_rhs (derivative evaluations per second; the
 // project target is >= 1e7 on one core) and sim_s_per_wall_s of BM_simulate_rk4_100Hz.
+// BM_euler_rhs takes the fused kernels of the processor (AVX2 where it has it;
+// MANTA_FLIGHTDYN_KERNELS=baseline or =reference chooses the baseline set or the templates);
+// the *_kernels and *_templates variants fix the path.
 
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "../../tests/flightdyn/test_sim_models.hpp"
@@ -78,10 +82,56 @@ void BM_euler_rhs(benchmark::State& state) {
         benchmark::DoNotOptimize(d);
     }
     state.SetItemsProcessed(state.iterations());
-    state.SetLabel(m.angle_rate_terms ? "alpha-dot terms (implicit solve, one table pass)"
-                                      : "no alpha-dot terms");
+    state.SetLabel(std::string(m.angle_rate_terms ? "alpha-dot terms (implicit solve)"
+                                                  : "no alpha-dot terms") +
+                   ", kernels: " + fd::detail::fast_rhs_kernel_name());
 }
 BENCHMARK(BM_euler_rhs);
+
+/// BM_euler_rhs with the fused kernels of one instruction set (states the fused path refuses,
+/// out-of-table queries, take the templates as in euler_rhs).
+void fused_rhs(benchmark::State& state, fd::detail::FastKernelSet set) {
+    const fd::FlightModel& m = ranger();
+    const auto xs = samples();
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const Sample& s = xs[i++ & (n_states - 1)];
+        fd::EulerState<double> d;
+        if (!fd::detail::fast_euler_rhs(m, s.state, s.controls, d, set))
+            d = fd::detail::euler_rhs_reference(m, s.state, s.controls);
+        benchmark::DoNotOptimize(d);
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+
+void BM_euler_rhs_baseline_kernels(benchmark::State& state) {
+    fused_rhs(state, fd::detail::FastKernelSet::baseline);
+}
+BENCHMARK(BM_euler_rhs_baseline_kernels);
+
+void BM_euler_rhs_avx2_kernels(benchmark::State& state) {
+    if (!fd::detail::has_avx2_rhs_kernels()) {
+        state.SkipWithError("no AVX2 kernels on this processor or build");
+        return;
+    }
+    fused_rhs(state, fd::detail::FastKernelSet::avx2);
+}
+BENCHMARK(BM_euler_rhs_avx2_kernels);
+
+/// The same right-hand side by the templates alone (the reference of the fused kernels, and the
+/// path of every non-double scalar).
+void BM_euler_rhs_templates(benchmark::State& state) {
+    const fd::FlightModel& m = ranger();
+    const auto xs = samples();
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const Sample& s = xs[i++ & (n_states - 1)];
+        const auto d = fd::detail::euler_rhs_reference(m, s.state, s.controls);
+        benchmark::DoNotOptimize(d);
+    }
+    state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_euler_rhs_templates);
 
 void BM_quaternion_rhs(benchmark::State& state) {
     const fd::FlightModel& m = ranger();

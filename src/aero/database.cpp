@@ -547,6 +547,72 @@ detail::Plan compile(const std::vector<Table>& tables, ForceAxes force_axes,
     return plan;
 }
 
+static_assert(detail::fast_n_axes == detail::n_axes &&
+              detail::fast_max_grids == detail::max_grids &&
+              detail::fast_n_slots == detail::n_slots && detail::fast_n_rates == detail::n_rates &&
+              detail::fast_first_angle_rate == detail::first_angle_rate);
+
+/// The plain-data copy of a compiled plan (fast_plan.hpp); false if the plan exceeds its fixed
+/// limits. The pointers stay valid: the plan's vectors do not change once the Impl is built.
+bool make_fast_plan(const detail::Plan& plan, detail::FastPlan& fast) {
+    if (plan.grids.size() > static_cast<std::size_t>(detail::fast_max_grids) ||
+        plan.tables.size() > static_cast<std::size_t>(detail::fast_max_tables))
+        return false;
+    fast.wind = plan.wind ? 1 : 0;
+    fast.n_grids = static_cast<int>(plan.grids.size());
+    fast.n_tables = static_cast<int>(plan.tables.size());
+    for (std::size_t g = 0; g < plan.grids.size(); ++g) {
+        const detail::GridPlan& gp = plan.grids[g];
+        int uniform = gp.uniform ? 1 : 0;
+        if (gp.uniform) {
+            const double h = (gp.hi - gp.lo) / (gp.n - 1);
+            bool exact = true;
+            for (int i = 0; i < gp.n; ++i) {
+                if (std::abs(gp.x[static_cast<std::size_t>(i)] - (gp.lo + i * h)) > 1e-14 * h)
+                    exact = false;
+            }
+            if (exact) uniform = 2;
+        }
+        fast.grids[g] = {gp.lo,           gp.hi,   gp.inv_h, gp.last_d, gp.x.data(),
+                         gp.inv_w.data(), gp.last, gp.axis,  uniform};
+    }
+    fast.shared_pair = 1;
+    for (std::size_t t = 0; t < plan.tables.size(); ++t) {
+        const detail::TablePlan& tp = plan.tables[t];
+        detail::FastTable& ft = fast.tables[t];
+        ft = detail::FastTable{};
+        if (tp.n_stored > detail::fast_max_stored) return false;
+        ft.values = tp.values.data();
+        ft.n_stored = tp.n_stored;
+        ft.direct = !tp.rated && tp.n_columns == detail::n_slots ? 1 : 0;
+        for (std::size_t c = 0; c < static_cast<std::size_t>(detail::fast_max_stored); ++c) {
+            int d = detail::fast_padding_slot;
+            if (c < static_cast<std::size_t>(tp.n_columns)) {
+                const int f = tp.factor[c];
+                d = detail::n_slots * (f == detail::unit_factor ? 0 : 1 + f) + tp.slot[c];
+            }
+            ft.dest[c] = static_cast<std::int8_t>(d);
+        }
+        for (std::size_t k = 0; k < static_cast<std::size_t>(detail::n_axes); ++k) {
+            ft.stride[k] = tp.stride[k];
+            ft.grid[k] = tp.grid[k];
+        }
+        ft.n_active = tp.n_active;
+        if (ft.n_active <= 4) {
+            for (std::size_t c = 0; c < (std::size_t{1} << ft.n_active); ++c) {
+                std::size_t o = 0;
+                for (std::size_t k = 0; k < static_cast<std::size_t>(ft.n_active); ++k)
+                    if ((c >> k) & 1u) o += ft.stride[k];
+                ft.corner_offset[c] = o;
+            }
+        }
+        if (ft.n_active < 2 || ft.grid[0] != fast.tables[0].grid[0] ||
+            ft.grid[1] != fast.tables[0].grid[1])
+            fast.shared_pair = 0;
+    }
+    return true;
+}
+
 void reset_counters(AeroDatabase::Impl& impl) {
     for (std::size_t k = 0; k < impl.counter_owner.size(); ++k) {
         auto& r = impl.range[k];
@@ -568,6 +634,7 @@ std::unique_ptr<AeroDatabase::Impl> make_impl(DatabaseInfo info, ForceAxes force
     impl->extrapolation = extrapolation;
     impl->tables = std::move(tables);
     impl->plan = compile(impl->tables, force_axes, extrapolation, impl->counter_owner);
+    impl->has_fast_plan = make_fast_plan(impl->plan, impl->fast);
     impl->range = std::make_unique<detail::RangeCounter[]>(impl->counter_owner.size());
     reset_counters(*impl);
     return impl;
@@ -607,6 +674,14 @@ AeroDatabase& AeroDatabase::operator=(const AeroDatabase& other) {
 AeroDatabase::AeroDatabase(AeroDatabase&&) noexcept = default;
 AeroDatabase& AeroDatabase::operator=(AeroDatabase&&) noexcept = default;
 AeroDatabase::~AeroDatabase() = default;
+
+const detail::FastPlan* AeroDatabase::fast_plan() const noexcept {
+    return impl_->has_fast_plan ? &impl_->fast : nullptr;
+}
+
+void AeroDatabase::count_evaluation() const noexcept {
+    impl_->evaluations.add();
+}
 
 const DatabaseInfo& AeroDatabase::info() const {
     return impl_->info;

@@ -35,6 +35,10 @@
 
 namespace manta::aero {
 
+namespace detail {
+struct FastPlan;
+}
+
 enum class ForceAxes { wind, body };
 enum class Interpolation { multilinear, c1 };
 enum class Extrapolation { clamp, linear };
@@ -159,6 +163,15 @@ public:
     /// angle rates without evaluating the tables again.
     [[nodiscard]] AngleRateExpansion evaluate_with_angle_rates(const AeroQuery<double>& q,
                                                                Interpolation method) const;
+
+    /// Internal, for compiled kernels of other modules (flightdyn's fused right-hand side): the
+    /// multilinear plan as plain data (manta/aero/detail/fast_plan.hpp), valid while the
+    /// database lives, or nullptr if the tables exceed its fixed limits. A kernel that uses it
+    /// must take every out-of-table query to `evaluate` (which counts it) and report each
+    /// evaluation it completes itself with `count_evaluation`.
+    [[nodiscard]] const detail::FastPlan* fast_plan() const noexcept;
+    /// Internal: count one evaluation done from `fast_plan()` (thread-safe).
+    void count_evaluation() const noexcept;
 
     /// Counters of out-of-table queries since construction or the last reset (thread-safe).
     [[nodiscard]] OutOfRangeReport out_of_range() const;

@@ -369,12 +369,41 @@ template <class T>
 
 }  // namespace detail
 
-/// Time derivative of the Euler-angle state. If the aero tables carry alpha-dot or beta-dot
-/// terms the implicit dependence is solved exactly (the loads are affine in them; see
-/// detail::consistent_loads).
+namespace detail {
+
+/// Instruction set of the fused double-precision right-hand side (src/flightdyn/fast_rhs.cpp).
+enum class FastKernelSet {
+    /// AVX2 with FMA where the processor has it; MANTA_FLIGHTDYN_KERNELS=baseline forces the
+    /// baseline set, =reference turns the fused path off (the templates alone, for comparisons)
+    automatic,
+    baseline,  ///< baseline x86-64 (SSE2)
+    avx2,      ///< AVX2 with FMA (unavailable: the fused path reports false)
+};
+
+/// The fused right-hand side in double: atmosphere, thrust, one multilinear pass over the aero
+/// tables with the alpha-dot/beta-dot partials, the implicit angle-rate solve, accelerations and
+/// kinematics in one compiled function, equal to euler_rhs_reference to rounding. Returns false,
+/// with `d` unspecified, where it does not apply (thrust tables, C1 interpolation, an
+/// out-of-table query, which the reference path counts, altitude outside the atmosphere, V near
+/// zero, non-principal air data); the caller then takes the reference path. Counts one aero
+/// evaluation when it succeeds.
+[[nodiscard]] bool fast_euler_rhs(const FlightModel& m, const EulerState<double>& s,
+                                  const Controls<double>& u, EulerState<double>& d,
+                                  FastKernelSet which = FastKernelSet::automatic);
+/// The same for the quaternion form (equal to quaternion_rhs_reference to rounding).
+[[nodiscard]] bool fast_quaternion_rhs(const FlightModel& m, const QuatState<double>& s,
+                                       const Controls<double>& u, QuatState<double>& d,
+                                       FastKernelSet which = FastKernelSet::automatic);
+/// True when this build has the AVX2 kernels and the processor runs them.
+[[nodiscard]] bool has_avx2_rhs_kernels();
+/// Name of the kernel set the automatic choice uses ("avx2", "baseline" or "reference").
+[[nodiscard]] const char* fast_rhs_kernel_name();
+
+/// euler_rhs by the templates alone (any scalar): the reference of the fused path.
 template <class T>
-[[nodiscard]] EulerState<T> euler_rhs(const FlightModel& m, const EulerState<T>& s,
-                                      const Controls<T>& u, Loads<T>* loads_out = nullptr) {
+[[nodiscard]] EulerState<T> euler_rhs_reference(const FlightModel& m, const EulerState<T>& s,
+                                                const Controls<T>& u,
+                                                Loads<T>* loads_out = nullptr) {
     using std::asin;
     using std::atan2;
     using std::sqrt;
@@ -435,10 +464,11 @@ template <class T>
     return d;
 }
 
-/// Time derivative of the quaternion state (see euler_rhs for alpha-dot terms).
+/// quaternion_rhs by the templates alone (any scalar): the reference of the fused path.
 template <class T>
-[[nodiscard]] QuatState<T> quaternion_rhs(const FlightModel& m, const QuatState<T>& s,
-                                          const Controls<T>& u, Loads<T>* loads_out = nullptr) {
+[[nodiscard]] QuatState<T> quaternion_rhs_reference(const FlightModel& m, const QuatState<T>& s,
+                                                    const Controls<T>& u,
+                                                    Loads<T>* loads_out = nullptr) {
     using std::asin;
     using std::atan2;
     using std::sqrt;
@@ -486,6 +516,39 @@ template <class T>
     d[quat::r] = w_dot.z();
     if (loads_out) *loads_out = L;
     return d;
+}
+
+}  // namespace detail
+
+/// Time derivative of the Euler-angle state. If the aero tables carry alpha-dot or beta-dot
+/// terms the implicit dependence is solved exactly (the loads are affine in them; see
+/// detail::consistent_loads). In double without `loads_out` the fused kernel
+/// (detail::fast_euler_rhs) runs where it applies; otherwise, and for every other scalar,
+/// detail::euler_rhs_reference.
+template <class T>
+[[nodiscard]] EulerState<T> euler_rhs(const FlightModel& m, const EulerState<T>& s,
+                                      const Controls<T>& u, Loads<T>* loads_out = nullptr) {
+    if constexpr (std::is_same_v<T, double>) {
+        if (loads_out == nullptr) {
+            EulerState<double> d;
+            if (detail::fast_euler_rhs(m, s, u, d)) return d;
+        }
+    }
+    return detail::euler_rhs_reference(m, s, u, loads_out);
+}
+
+/// Time derivative of the quaternion state (see euler_rhs for alpha-dot terms and the fused
+/// double path).
+template <class T>
+[[nodiscard]] QuatState<T> quaternion_rhs(const FlightModel& m, const QuatState<T>& s,
+                                          const Controls<T>& u, Loads<T>* loads_out = nullptr) {
+    if constexpr (std::is_same_v<T, double>) {
+        if (loads_out == nullptr) {
+            QuatState<double> d;
+            if (detail::fast_quaternion_rhs(m, s, u, d)) return d;
+        }
+    }
+    return detail::quaternion_rhs_reference(m, s, u, loads_out);
 }
 
 /// Quaternion (q0, q1, q2, q3) of 3-2-1 Euler angles (body-to-earth rotation).

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "manta/aero/database.hpp"
+#include "manta/aero/detail/fast_plan.hpp"
 
 namespace manta::aero::detail {
 
@@ -171,6 +172,9 @@ struct AeroDatabase::Impl {
     std::vector<std::pair<int, int>> counter_owner;
     std::unique_ptr<detail::RangeCounter[]> range;
     mutable detail::EvaluationCounter evaluations;
+    /// The multilinear plan as plain data, pointing into `plan` (valid when has_fast_plan).
+    detail::FastPlan fast{};
+    bool has_fast_plan = false;
 };
 
 namespace detail {

@@ -1,0 +1,253 @@
+// The fused double-precision right-hand side (src/flightdyn/fast_rhs*.cpp) against the templates
+// it replaces (detail::euler_rhs_reference, detail::quaternion_rhs_reference), for the baseline
+// and, where the processor has it, the AVX2 kernel set; and the cases it hands back to the
+// templates (out-of-table queries, which must still be counted, thrust tables, C1 tables).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "manta/aircraft/aircraft.hpp"
+#include "manta/core/units.hpp"
+#include "manta/flightdyn/eom.hpp"
+#include "test_sim_models.hpp"
+
+namespace fd = manta::flightdyn;
+using fd::detail::FastKernelSet;
+using manta::core::deg;
+
+namespace {
+
+/// The Ranger-like model with beta-dot columns (CY, Cl, Cn) in its dynamic table, the CG off the
+/// moment reference point and an offset, tilted thrust line: every term of the loads in play.
+fd::FlightModel every_term(fd::FlightModel m) {
+    std::vector<manta::aero::Table> tables = m.aero->tables();
+    for (auto& t : tables) {
+        if (t.kind != manta::aero::TableKind::dynamic) continue;
+        const std::size_t nc = t.columns.size(), np = t.n_points();
+        std::vector<double> values;
+        for (std::size_t p = 0; p < np; ++p) {
+            for (std::size_t c = 0; c < nc; ++c) values.push_back(t.values[p * nc + c]);
+            values.push_back(0.3 + 0.01 * static_cast<double>(p % 5));
+            values.push_back(-0.05 + 0.002 * static_cast<double>(p % 3));
+            values.push_back(0.08 - 0.003 * static_cast<double>(p % 7));
+        }
+        t.columns.insert(t.columns.end(), {"CY_betadot", "Cl_betadot", "Cn_betadot"});
+        t.values = std::move(values);
+    }
+    m.aero = std::make_shared<const manta::aero::AeroDatabase>(
+        m.aero->info(), m.aero->force_axes(), m.aero->extrapolation(), std::move(tables));
+    m.name += ", beta-dot columns, offsets";
+    m.mass.cg_geom = Eigen::Vector3d(0.12, 0.01, -0.05);
+    m.engine.thrust_angle = deg(2.5);
+    m.engine.has_position = true;
+    m.engine.position = {1.0, 0.0, -0.3};
+    m.engine_angular_momentum = Eigen::Vector3d(30.0, 0.0, 0.0);
+    fd::finalize(m);
+    return m;
+}
+
+/// The models of the comparison: no aero, the Ranger-like derivative tables, every term, and the
+/// Ranger of examples/ (the benchmark's model) when the file is there.
+std::vector<fd::FlightModel> models() {
+    std::vector<fd::FlightModel> out;
+    auto rigid = manta::test::rigid_body(5000.0, 8000.0, 25000.0, 30000.0, 1000.0);
+    rigid.engine.static_thrust_sl = 14000.0;
+    rigid.engine.thrust_angle = deg(2.0);
+    rigid.name = "rigid body";
+    out.push_back(rigid);
+    out.push_back(manta::test::ranger_like());
+    out.back().name = "Ranger-like";
+    out.push_back(every_term(manta::test::ranger_like()));
+    const std::filesystem::path file =
+        std::filesystem::path(MANTA_SOURCE_DIR) / "examples" / "ranger2000" / "aircraft.yaml";
+    if (std::filesystem::exists(file)) {
+        fd::FlightModel m = manta::aircraft::load_aircraft(file).flight_model();
+        fd::finalize(m);
+        m.name = "Ranger 2000 (examples)";
+        out.push_back(std::move(m));
+    }
+    return out;
+}
+
+struct Case {
+    fd::EulerState<double> state;
+    fd::Controls<double> controls;
+};
+
+/// States mostly inside the tables, some beyond them; all attitudes and headings.
+std::vector<Case> random_cases(int n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
+    std::vector<Case> out(static_cast<std::size_t>(n));
+    for (auto& c : out) {
+        c.state << in(-1e4, 1e4), in(-1e4, 1e4), -in(200, 12000), in(-3.0, 3.0), in(-1.4, 1.4),
+            in(-7.0, 7.0), in(60, 230), deg(in(-8, 22)), deg(in(-11, 11)), in(-1.0, 1.0),
+            in(-0.5, 0.5), in(-0.5, 0.5);
+        c.controls.elevator = deg(in(-25, 15));
+        c.controls.aileron = deg(in(-25, 15));
+        c.controls.rudder = deg(in(-17, 17));
+        c.controls.throttle = in(0.0, 1.0);
+    }
+    return out;
+}
+
+/// Largest |a - b| relative to 1 + |b|.
+template <class A, class B>
+double max_rel(const A& a, const B& b) {
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < a.size(); ++i)
+        worst = std::max(worst, std::abs(a[i] - b[i]) / (1.0 + std::abs(b[i])));
+    return worst;
+}
+
+std::vector<FastKernelSet> kernel_sets() {
+    std::vector<FastKernelSet> sets = {FastKernelSet::baseline};
+    if (fd::detail::has_avx2_rhs_kernels()) sets.push_back(FastKernelSet::avx2);
+    return sets;
+}
+
+const char* name_of(FastKernelSet k) {
+    return k == FastKernelSet::avx2 ? "avx2" : "baseline";
+}
+
+}  // namespace
+
+// Both state forms, both kernel sets, every model: the fused result equals the templates' to
+// rounding (FMA contraction and the uniform-grid cell formula change the last bits), and the
+// fused path takes most states (the rest are out-of-table queries).
+TEST(FusedRhs, MatchesTheReferenceTemplates) {
+    const auto cases = random_cases(400, 21);
+    for (const fd::FlightModel& m : models()) {
+        for (const FastKernelSet k : kernel_sets()) {
+            SCOPED_TRACE(m.name + ", " + name_of(k));
+            double worst_e = 0.0, worst_q = 0.0;
+            int taken_e = 0, taken_q = 0;
+            for (const Case& c : cases) {
+                fd::EulerState<double> de;
+                if (fd::detail::fast_euler_rhs(m, c.state, c.controls, de, k)) {
+                    ++taken_e;
+                    const auto ref = fd::detail::euler_rhs_reference(m, c.state, c.controls);
+                    worst_e = std::max(worst_e, max_rel(de, ref));
+                }
+                const fd::QuatState<double> x = fd::to_quaternion_state(c.state);
+                fd::QuatState<double> dq;
+                if (fd::detail::fast_quaternion_rhs(m, x, c.controls, dq, k)) {
+                    ++taken_q;
+                    const auto ref = fd::detail::quaternion_rhs_reference(m, x, c.controls);
+                    worst_q = std::max(worst_q, max_rel(dq, ref));
+                }
+            }
+            EXPECT_LT(worst_e, 1e-13);
+            EXPECT_LT(worst_q, 1e-13);
+            EXPECT_GT(taken_e, 200);
+            EXPECT_EQ(taken_q, taken_e);
+            if (!m.aero) {
+                EXPECT_EQ(taken_e, static_cast<int>(cases.size()));
+            }
+        }
+    }
+}
+
+// Grids that are not exactly uniform take the other two cell searches (a uniform guess corrected
+// by one cell for nodes within h/4 of uniform, a binary search otherwise): the same agreement.
+TEST(FusedRhs, NonUniformGridsMatchTheReference) {
+    fd::FlightModel m = manta::test::ranger_like();
+    std::vector<manta::aero::Table> tables = m.aero->tables();
+    for (auto& t : tables) {
+        for (auto& a : t.axes) {
+            if (a.axis == manta::aero::Axis::mach) a.breakpoints[3] += 0.013;  // within h/4
+            if (a.axis == manta::aero::Axis::alpha && a.breakpoints.size() > 4)
+                a.breakpoints[4] += 0.4 * (a.breakpoints[5] - a.breakpoints[4]);  // beyond h/4
+        }
+    }
+    m.aero = std::make_shared<const manta::aero::AeroDatabase>(
+        m.aero->info(), m.aero->force_axes(), m.aero->extrapolation(), std::move(tables));
+    fd::finalize(m);
+    for (const FastKernelSet k : kernel_sets()) {
+        SCOPED_TRACE(name_of(k));
+        int taken = 0;
+        double worst = 0.0;
+        for (const Case& c : random_cases(300, 5)) {
+            fd::EulerState<double> d;
+            if (!fd::detail::fast_euler_rhs(m, c.state, c.controls, d, k)) continue;
+            ++taken;
+            worst = std::max(worst,
+                             max_rel(d, fd::detail::euler_rhs_reference(m, c.state, c.controls)));
+        }
+        EXPECT_GT(taken, 150);
+        EXPECT_LT(worst, 1e-13);
+    }
+}
+
+// An out-of-table query goes to the templates, which count it; every evaluation is counted once
+// whichever path takes it.
+TEST(FusedRhs, OutOfTableQueriesAreHandedBackAndCounted) {
+    const fd::FlightModel m = manta::test::ranger_like();
+    m.aero->reset_out_of_range();
+    Case inside;
+    inside.state << 0.0, 0.0, -3000.0, 0.1, 0.05, 0.3, 150.0, deg(3.0), deg(1.0), 0.1, 0.05, 0.02;
+    inside.controls.throttle = 0.5;
+    Case beyond = inside;
+    beyond.state[fd::euler::alpha] = deg(40.0);  // above the alpha grid
+    fd::EulerState<double> d;
+    EXPECT_TRUE(
+        fd::detail::fast_euler_rhs(m, inside.state, inside.controls, d, FastKernelSet::baseline));
+    EXPECT_FALSE(
+        fd::detail::fast_euler_rhs(m, beyond.state, beyond.controls, d, FastKernelSet::baseline));
+    auto r = m.aero->out_of_range();
+    EXPECT_EQ(r.evaluations, 1u);  // the fused evaluation; the refused one counts nothing
+    EXPECT_EQ(r.total(), 0u);
+    (void)fd::euler_rhs(m, inside.state, inside.controls);
+    (void)fd::euler_rhs(m, beyond.state, beyond.controls);
+    r = m.aero->out_of_range();
+    EXPECT_EQ(r.evaluations, 3u);
+    EXPECT_GT(r.total(), 0u);
+    const auto all = r.entries;
+    ASSERT_FALSE(all.empty());
+    for (const auto& e : all) EXPECT_EQ(e.axis, manta::aero::Axis::alpha);
+}
+
+// Models the fused path does not cover take the templates; euler_rhs gives their result.
+TEST(FusedRhs, UncoveredModelsTakeTheTemplates) {
+    const Case c = random_cases(1, 3).front();
+    fd::FlightModel c1 = manta::test::ranger_like();
+    c1.interpolation = manta::aero::Interpolation::c1;
+    fd::FlightModel table = manta::test::ranger_like();
+    table.engine.type = fd::EngineModel::Type::table;
+    table.engine.altitude = {0.0, 10000.0};
+    table.engine.mach = {0.0, 1.0};
+    table.engine.throttle = {0.0, 1.0};
+    table.engine.thrust = {0.0, 14000.0, 0.0, 13000.0, 0.0, 6000.0, 0.0, 5500.0};
+    fd::finalize(table);
+    for (const fd::FlightModel* m : {&c1, &table}) {
+        fd::EulerState<double> d;
+        EXPECT_FALSE(fd::detail::fast_euler_rhs(*m, c.state, c.controls, d));
+        EXPECT_EQ(fd::euler_rhs(*m, c.state, c.controls),
+                  fd::detail::euler_rhs_reference(*m, c.state, c.controls));
+    }
+    // Loads wanted: the templates, which fill them.
+    const fd::FlightModel m = manta::test::ranger_like();
+    fd::Loads<double> L;
+    EXPECT_EQ(fd::euler_rhs(m, c.state, c.controls, &L),
+              fd::detail::euler_rhs_reference(m, c.state, c.controls));
+    EXPECT_GT(L.dynamic_pressure, 0.0);
+}
+
+// The automatic choice names its set; a processor with AVX2 and FMA uses them unless the
+// environment says otherwise.
+TEST(FusedRhs, KernelChoice) {
+    const std::string name = fd::detail::fast_rhs_kernel_name();
+    EXPECT_TRUE(name == "avx2" || name == "baseline" || name == "reference") << name;
+    if (name == "avx2") {
+        EXPECT_TRUE(fd::detail::has_avx2_rhs_kernels());
+    }
+}
