@@ -6,8 +6,10 @@
 //
 //   build/bench/vlm/bench_vlm --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
-// MANTA_VLM_KERNELS=baseline in the environment runs the baseline x86-64 kernels instead of the
-// AVX2 ones (detail/kernels.hpp). The project's target is under 50 ms per case on one core
+// MANTA_VLM_KERNELS=baseline or =avx2 in the environment runs the baseline x86-64 or the AVX2
+// kernels instead of the widest set the processor has (detail/kernels.hpp). The default path is
+// single precision with iterative refinement (SteadyOptions::single_precision); the `_double`
+// cases run the double-precision path. The project's target is under 50 ms per case on one core
 // (issue 3). Also one step of the unsteady lattice of the Ranger with a 200-row wake, and one step
 // as in the 60-second replay (vlm_replay_60s: time step c_ref / v0, 20-row wake, two threads).
 
@@ -35,12 +37,15 @@ vlm::Model ranger() {
     return vlm::from_geometry(def.geometry, ref, {}, def.name);
 }
 
-void run(benchmark::State& state, const vlm::Model& m, double mach, double alpha) {
+void run(benchmark::State& state, const vlm::Model& m, double mach, double alpha,
+         bool single = true) {
     const vlm::Lattice lattice = vlm::build_lattice(m);
     vlm::FlowState s;
     s.alpha = alpha;
+    vlm::SteadyOptions o;
+    o.single_precision = single;
     for (auto _ : state) {
-        const vlm::SteadySolver solver(m, lattice, mach);
+        const vlm::SteadySolver solver(m, lattice, mach, o);
         benchmark::DoNotOptimize(solver.derivatives(s));
     }
     state.counters["vortices"] = lattice.size();
@@ -50,6 +55,11 @@ void BM_ranger_steady_and_derivatives(benchmark::State& state) {
     run(state, ranger(), 0.3, 0.035);
 }
 BENCHMARK(BM_ranger_steady_and_derivatives)->Unit(benchmark::kMillisecond);
+
+void BM_ranger_steady_and_derivatives_double(benchmark::State& state) {
+    run(state, ranger(), 0.3, 0.035, false);
+}
+BENCHMARK(BM_ranger_steady_and_derivatives_double)->Unit(benchmark::kMillisecond);
 
 /// The Ranger without exact mirror symmetry: the mirror copies' plane at y = 1e-12 m.
 void BM_ranger_steady_and_derivatives_whole_system(benchmark::State& state) {
@@ -69,6 +79,16 @@ void BM_b737_steady_and_derivatives(benchmark::State& state) {
     run(state, vlm::read_avl(file), 0.7, 0.0335);
 }
 BENCHMARK(BM_b737_steady_and_derivatives)->Unit(benchmark::kMillisecond);
+
+void BM_b737_steady_and_derivatives_double(benchmark::State& state) {
+    const fs::path file = fs::path(MANTA_SHARED_DIR) / "reference" / "avl" / "samples" / "b737.avl";
+    if (!fs::exists(file)) {
+        state.SkipWithError("no AVL reference data");
+        return;
+    }
+    run(state, vlm::read_avl(file), 0.7, 0.0335, false);
+}
+BENCHMARK(BM_b737_steady_and_derivatives_double)->Unit(benchmark::kMillisecond);
 
 /// One unsteady step of the Ranger lattice (default density, ~2 000 panels) with a 200-row wake
 /// (started from the steady solution, whose wake is already full), at constant attitude.

@@ -10,6 +10,7 @@
 #if defined(__AVX2__) && defined(__FMA__)
 
 #define Eigen manta_vlm_eigen_avx2
+#include <immintrin.h>
 #include <Eigen/Core>
 #include <Eigen/LU>
 

@@ -50,19 +50,22 @@ struct Stretched {
     double fy = 0.0, fz = 0.0, z_plane = 0.0;
 
     /// Structure-of-arrays copy of the horseshoes and of their mirror images (`prepare_rows`),
-    /// padded with copies of the last horseshoe to a multiple of 4 (`row` works on groups of 4).
+    /// padded with copies of the last horseshoe to a multiple of 8 (`row` works on groups of 4,
+    /// `row_f` on groups of 8), with single-precision copies of r0, |r0|^2 and the cores.
     struct Set {
         double factor = 1.0;  // image factor (1 for the lattice itself)
         Eigen::ArrayXd ax, ay, az, bx, by, bz, r0x, r0y, r0z, l2;
+        Eigen::ArrayXf r0x_f, r0y_f, r0z_f, l2_f;
     };
     std::vector<Set> sets;
     Eigen::ArrayXd cin, cx;
+    Eigen::ArrayXf cin_f, cx_f;
     Eigen::ArrayXi comps;
     Eigen::Index padded = 0;
 
     void prepare_rows() {
         const auto n = static_cast<Eigen::Index>(a.size());
-        padded = (n + 3) / 4 * 4;
+        padded = (n + 7) / 8 * 8;
         // The lattice, then its images: y, z, then both (a mirror image
         // reverses the sense of the bound segment: ends swapped; two restore it).
         auto my = [](const Vector3d& q) { return Vector3d(q.x(), -q.y(), q.z()); };
@@ -108,6 +111,10 @@ struct Stretched {
                 s.r0z[j] = s.bz[j] - s.az[j];
                 s.l2[j] = s.r0x[j] * s.r0x[j] + s.r0y[j] * s.r0y[j] + s.r0z[j] * s.r0z[j];
             }
+            s.r0x_f = s.r0x.cast<float>();
+            s.r0y_f = s.r0y.cast<float>();
+            s.r0z_f = s.r0z.cast<float>();
+            s.l2_f = s.l2.cast<float>();
             sets.push_back(std::move(s));
         }
         cin.resize(padded);
@@ -119,15 +126,19 @@ struct Stretched {
             cx[j] = core_x[k];
             comps[j] = component[k];
         }
+        cin_f = cin.cast<float>();
+        cx_f = cx.cast<float>();
         views.clear();
         for (const Set& t : sets)
             views.push_back({t.factor, t.ax.data(), t.ay.data(), t.az.data(), t.bx.data(),
                              t.by.data(), t.bz.data(), t.r0x.data(), t.r0y.data(), t.r0z.data(),
-                             t.l2.data()});
+                             t.l2.data(), t.r0x_f.data(), t.r0y_f.data(), t.r0z_f.data(),
+                             t.l2_f.data()});
         view = {views.data(), static_cast<int>(views.size()),
                 cin.data(),   cx.data(),
                 comps.data(), padded,
-                beta};
+                beta,         cin_f.data(),
+                cx_f.data()};
     }
 
     /// Velocities at p of every horseshoe at once (detail::Kernels::horseshoe_row: four
@@ -139,6 +150,14 @@ struct Stretched {
         vy.resize(padded);
         vz.resize(padded);
         detail::kernels().horseshoe_row(view, p.data(), comp, vx.data(), vy.data(), vz.data());
+    }
+    /// `row` in single precision (detail::Kernels::horseshoe_row_f: eight at a time).
+    void row_f(const Vector3d& p, int comp, Eigen::ArrayXf& vx, Eigen::ArrayXf& vy,
+               Eigen::ArrayXf& vz) const {
+        vx.resize(padded);
+        vy.resize(padded);
+        vz.resize(padded);
+        detail::kernels().horseshoe_row_f(view, p.data(), comp, vx.data(), vy.data(), vz.data());
     }
     /// Pointers into `sets` for the kernel (set by prepare_rows; the object is not copied after).
     std::vector<detail::HorseshoeSet> views;
@@ -301,18 +320,29 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
     for (const Strip& S : lattice_.strips)
         if (!S.sheds_wake)
             closure_row_[static_cast<std::size_t>(S.first_panel + S.n_panels - 1)] = 1;
+    const bool single = options_.single_precision;
+    // Row i of the influence matrix: normal velocity at control point i of every horseshoe, in
+    // double or (single) in single precision.
     Eigen::ArrayXd vx, vy, vz, vals(n);
-    // Row i of the influence matrix: normal velocity at control point i of every horseshoe.
+    Eigen::ArrayXf fx, fy, fz, vals_f(n);
     auto influence_row = [&](int i) {
         const auto ii = static_cast<std::size_t>(i);
         if (closure_row_[ii]) {
             const Strip& S = lattice_.strips[static_cast<std::size_t>(lattice_.strip[ii])];
             vals.setZero();
             vals.segment(S.first_panel, S.n_panels).setOnes();
+            vals_f.setZero();
+            vals_f.segment(S.first_panel, S.n_panels).setOnes();
             return;
         }
         const Vector3d p = stretch(lattice_.control_point[ii], beta_pg_);
         const Vector3d& nrm = lattice_.normal[ii];
+        if (single) {
+            st.row_f(p, component_of(model_, lattice_, ii), fx, fy, fz);
+            const Eigen::Vector3f nf = nrm.cast<float>();
+            vals_f = fx.head(n) * nf.x() + fy.head(n) * nf.y() + fz.head(n) * nf.z();
+            return;
+        }
         st.row(p, component_of(model_, lattice_, ii), vx, vy, vz);
         vals = vx.head(n) * nrm.x() + vy.head(n) * nrm.y() + vz.head(n) * nrm.z();
     };
@@ -340,33 +370,76 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
                 M.anti.push_back(i);
             }
         }
-        const auto ns = static_cast<Eigen::Index>(M.sym.size());
-        const auto na = static_cast<Eigen::Index>(M.anti.size());
-        MatrixXd As(ns, ns), Aa(na, na);
-        for (const int i : M.rep) {
-            influence_row(i);
-            const auto ii = static_cast<std::size_t>(i);
-            if (const int r = pos_sym[ii]; r >= 0)
-                for (Eigen::Index c = 0; c < ns; ++c) {
-                    const auto j = static_cast<std::size_t>(M.sym[static_cast<std::size_t>(c)]);
-                    const int mj = M.image[j];
-                    As(r, c) = vals[static_cast<Eigen::Index>(j)] +
-                               (mj != static_cast<int>(j) ? M.sign[j] * vals[mj] : 0.0);
+        // Half-system rows, 16 at a time: gathered contiguously (as columns of a buffer), then
+        // copied into the column-major matrix as blocks of 16 consecutive rows.
+        auto assemble = [&]<typename Scalar>(const Eigen::Array<Scalar, Eigen::Dynamic, 1>& v,
+                                             auto& As, auto& Aa) {
+            using Mat = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+            struct Half {
+                const std::vector<int>* cols;
+                const std::vector<int>* pos;
+                Scalar f;
+                Mat* A;
+                Mat buf;
+                Eigen::Index r0 = 0, filled = 0;
+            };
+            Half halves[2] = {{&M.sym, &pos_sym, Scalar(1), &As, {}, 0, 0},
+                              {&M.anti, &pos_anti, Scalar(-1), &Aa, {}, 0, 0}};
+            constexpr Eigen::Index block = 16;
+            for (Half& h : halves) {
+                const auto nh = static_cast<Eigen::Index>(h.cols->size());
+                h.A->resize(nh, nh);
+                h.buf.resize(nh, block);
+            }
+            auto flush = [](Half& h) {
+                if (h.filled == 0) return;
+                h.A->middleRows(h.r0, h.filled) = h.buf.leftCols(h.filled).transpose();
+                h.r0 += h.filled;
+                h.filled = 0;
+            };
+            for (const int i : M.rep) {
+                influence_row(i);
+                for (Half& h : halves) {
+                    if ((*h.pos)[static_cast<std::size_t>(i)] < 0) continue;
+                    auto col = h.buf.col(h.filled);
+                    const auto nh = static_cast<Eigen::Index>(h.cols->size());
+                    for (Eigen::Index c = 0; c < nh; ++c) {
+                        const auto j =
+                            static_cast<std::size_t>((*h.cols)[static_cast<std::size_t>(c)]);
+                        const int mj = M.image[j];
+                        col[c] = v[static_cast<Eigen::Index>(j)] +
+                                 (mj != static_cast<int>(j)
+                                      ? h.f * static_cast<Scalar>(M.sign[j]) * v[mj]
+                                      : Scalar(0));
+                    }
+                    if (++h.filled == block) flush(h);
                 }
-            if (const int r = pos_anti[ii]; r >= 0)
-                for (Eigen::Index c = 0; c < na; ++c) {
-                    const auto j = static_cast<std::size_t>(M.anti[static_cast<std::size_t>(c)]);
-                    const int mj = M.image[j];
-                    Aa(r, c) = vals[static_cast<Eigen::Index>(j)] -
-                               (mj != static_cast<int>(j) ? M.sign[j] * vals[mj] : 0.0);
-                }
+            }
+            for (Half& h : halves) flush(h);
+        };
+        if (single) {
+            Eigen::MatrixXf As, Aa;
+            assemble(vals_f, As, Aa);
+            M.lu_sym.compute_single(std::move(As));
+            M.lu_anti.compute_single(std::move(Aa));
+        } else {
+            MatrixXd As, Aa;
+            assemble(vals, As, Aa);
+            M.lu_sym.compute(std::move(As));
+            M.lu_anti.compute(std::move(Aa));
         }
-        M.lu_sym.compute(std::move(As));
-        M.lu_anti.compute(std::move(Aa));
         mirror_ = std::move(mirror);
-    } else {
+    } else if (single) {
         // Assembled transposed (row i of the influence matrix is column i here: contiguous
         // writes).
+        Eigen::MatrixXf At(n, n);
+        for (int i = 0; i < n; ++i) {
+            influence_row(i);
+            At.col(i) = vals_f.matrix();
+        }
+        At.transposeInPlace();
+        lu_.compute_single(std::move(At));
+    } else {
         MatrixXd At(n, n);
         for (int i = 0; i < n; ++i) {
             influence_row(i);
@@ -491,8 +564,20 @@ MatrixXd SteadySolver::induced_at_bound(const MatrixXd& gamma) const {
     const auto np = static_cast<Eigen::Index>(reps ? reps->size() : static_cast<std::size_t>(n));
     constexpr Eigen::Index bp = 16;
     Eigen::ArrayXd vx, vy, vz;
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows(3 * bp, n);
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows;
     MatrixXd T;
+    // Single precision: the velocity rows, circulations and products in floats.
+    const bool single = options_.single_precision;
+    Eigen::ArrayXf fx, fy, fz;
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows_f;
+    Eigen::MatrixXf T_f;
+    Eigen::MatrixXf GG_f;
+    if (single) {
+        GG_f = GG.cast<float>();
+        rows_f.resize(3 * bp, n);
+    } else {
+        rows.resize(3 * bp, n);
+    }
     for (Eigen::Index q0 = 0; q0 < np; q0 += bp) {
         const Eigen::Index m = std::min(bp, np - q0);
         auto point = [&](Eigen::Index q) {
@@ -501,14 +586,29 @@ MatrixXd SteadySolver::induced_at_bound(const MatrixXd& gamma) const {
         for (Eigen::Index q = 0; q < m; ++q) {
             const int i = point(q);
             const Vector3d p = stretch(mid_[static_cast<std::size_t>(i)], beta_pg_);
-            st.row(p, component_of(model_, lattice_, static_cast<std::size_t>(i)), vx, vy, vz);
+            const int comp = component_of(model_, lattice_, static_cast<std::size_t>(i));
+            if (single) {
+                st.row_f(p, comp, fx, fy, fz);
+                rows_f.row(3 * q) = fx.head(n).matrix().transpose();
+                rows_f.row(3 * q + 1) = fy.head(n).matrix().transpose();
+                rows_f.row(3 * q + 2) = fz.head(n).matrix().transpose();
+                continue;
+            }
+            st.row(p, comp, vx, vy, vz);
             rows.row(3 * q) = vx.head(n).matrix().transpose();
             rows.row(3 * q + 1) = vy.head(n).matrix().transpose();
             rows.row(3 * q + 2) = vz.head(n).matrix().transpose();
         }
         // T = rows * GG; the row-major rows are the column-major (N x 3 bp) rows^T.
-        T.resize(3 * m, GG.cols());
-        detail::kernels().gemm_tn(rows.data(), n, 3 * m, GG.data(), GG.cols(), T.data());
+        if (single) {
+            T_f.resize(3 * m, GG_f.cols());
+            detail::kernels().gemm_tn_f(rows_f.data(), n, 3 * m, GG_f.data(), GG_f.cols(),
+                                        T_f.data());
+            T = T_f.cast<double>();
+        } else {
+            T.resize(3 * m, GG.cols());
+            detail::kernels().gemm_tn(rows.data(), n, 3 * m, GG.data(), GG.cols(), T.data());
+        }
         for (Eigen::Index q = 0; q < m; ++q) {
             const int i = point(q);
             U.middleRows(3 * i, 3) = T.middleRows(3 * q, 3).leftCols(K);

@@ -115,9 +115,16 @@ struct Derivatives {
 ///   horseshoe's strip (AVL VRCORE = 0.25): wakes of one component passing near the lattice of
 ///   another (a wing's legs over a tailplane) do not induce spikes there.
 /// Both 0: singular vortices (points on a vortex line excepted).
+///
+/// `single_precision`: the horseshoe velocities (influence matrix and induced velocities at the
+/// force points) and the LU factorisation in single precision, the circulations refined in
+/// double precision against the (single-precision-accurate) influence matrix. About twice as
+/// fast; derivatives within about 1e-6 of the largest one of the double-precision path
+/// (docs/vlm.md, Performance). false: everything in double precision.
 struct SteadyOptions {
     double core_within_component = 1e-4;
     double core_between_components = 0.25;
+    bool single_precision = true;
 };
 
 /// The solver for one lattice and Mach number: influence matrix built and factorised once.
