@@ -2,8 +2,9 @@
 /// Writes the seed corpus of fuzz_cgns into the folder given as argument: small valid CGNS
 /// (HDF5) files covering the reader's paths (an unstructured zone with element sections and a
 /// MIXED section, boundary conditions as element ranges and as face sections; a structured 3-D
-/// block with vertex point ranges; a structured 2-D block extruded to a slab). Each file is read
-/// back with `mesh::read_cgns`; exit status 1 if one fails.
+/// block with vertex point ranges; a structured 2-D block extruded to a slab; two unstructured
+/// zones joined at coincident nodes). Each .cgns file in the folder is read back with
+/// `mesh::read_cgns`; exit status 1 if one fails.
 
 #include <cgnslib.h>
 
@@ -119,6 +120,49 @@ void structured(const fs::path& file, int dim) {
     ok(cg_close(fn));
 }
 
+/// Two unstructured zones of one unit hexahedron each, meeting at x = 1 with their own copies
+/// of the four interface nodes; face sections "walls", "ends" and "interface" (dropped once the
+/// zones are joined).
+void two_zones(const fs::path& file) {
+    int fn = 0, B = 0, C = 0, S = 0;
+    ok(cg_open(file.string().c_str(), CG_MODE_WRITE, &fn));
+    ok(cg_base_write(fn, "Base", 3, 3, &B));
+    for (int zone = 0; zone < 2; ++zone) {
+        int Z = 0;
+        cgsize_t size[3] = {8, 1, 0};
+        const std::string name = zone == 0 ? "Left" : "Right";
+        ok(cg_zone_write(fn, B, name.c_str(), size, CGNS_ENUMV(Unstructured), &Z));
+        std::vector<double> x, y, z;
+        for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 2; ++i) {
+                    x.push_back(zone + i);
+                    y.push_back(j);
+                    z.push_back(k);
+                }
+        ok(cg_coord_write(fn, B, Z, CGNS_ENUMV(RealDouble), "CoordinateX", x.data(), &C));
+        ok(cg_coord_write(fn, B, Z, CGNS_ENUMV(RealDouble), "CoordinateY", y.data(), &C));
+        ok(cg_coord_write(fn, B, Z, CGNS_ENUMV(RealDouble), "CoordinateZ", z.data(), &C));
+        auto n = [](int i, int j, int k) { return static_cast<cgsize_t>(1 + i + 2 * (j + 2 * k)); };
+        const std::vector<cgsize_t> hexa{n(0, 0, 0), n(1, 0, 0), n(1, 1, 0), n(0, 1, 0),
+                                         n(0, 0, 1), n(1, 0, 1), n(1, 1, 1), n(0, 1, 1)};
+        ok(cg_section_write(fn, B, Z, "Cells", CGNS_ENUMV(HEXA_8), 1, 1, 0, hexa.data(), &S));
+        const std::vector<cgsize_t> walls{n(0, 0, 0), n(1, 0, 0), n(1, 0, 1), n(0, 0, 1),
+                                          n(0, 1, 0), n(1, 1, 0), n(1, 1, 1), n(0, 1, 1),
+                                          n(0, 0, 0), n(1, 0, 0), n(1, 1, 0), n(0, 1, 0),
+                                          n(0, 0, 1), n(1, 0, 1), n(1, 1, 1), n(0, 1, 1)};
+        ok(cg_section_write(fn, B, Z, "walls", CGNS_ENUMV(QUAD_4), 2, 5, 0, walls.data(), &S));
+        const int outer = zone == 0 ? 0 : 1, inner = 1 - outer;
+        const std::vector<cgsize_t> end{n(outer, 0, 0), n(outer, 1, 0), n(outer, 1, 1),
+                                        n(outer, 0, 1)};
+        ok(cg_section_write(fn, B, Z, "ends", CGNS_ENUMV(QUAD_4), 6, 6, 0, end.data(), &S));
+        const std::vector<cgsize_t> face{n(inner, 0, 0), n(inner, 1, 0), n(inner, 1, 1),
+                                         n(inner, 0, 1)};
+        ok(cg_section_write(fn, B, Z, "interface", CGNS_ENUMV(QUAD_4), 7, 7, 0, face.data(), &S));
+    }
+    ok(cg_close(fn));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,7 +177,9 @@ int main(int argc, char** argv) {
         unstructured(dir / "hexa_mixed_boco.cgns", true, true);
         structured(dir / "block3d.cgns", 3);
         structured(dir / "block2d.cgns", 2);
+        two_zones(dir / "two_zones.cgns");
         for (const auto& f : fs::directory_iterator(dir)) {
+            if (f.path().extension() != ".cgns") continue;  // kept decoded-mode inputs
             const auto m = manta::mesh::read_cgns(f.path());
             std::printf("%s: %d nodes, %d cells, %d markers\n", f.path().filename().c_str(),
                         m.n_nodes(), m.n_cells(), m.n_markers());

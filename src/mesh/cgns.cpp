@@ -1,6 +1,7 @@
 /// @file cgns.cpp
 /// CGNS reader through the CGNS mid-level library (CGNS Mid-Level Library manual, v3.4; node
-/// order of the SIDS, "Element Numbering Conventions"). One unstructured zone of the first base.
+/// order of the SIDS, "Element Numbering Conventions"). Every zone of the first base, structured
+/// or unstructured; zones are joined where their exposed nodes coincide.
 
 #include <cgnslib.h>
 #include <fmt/format.h>
@@ -73,58 +74,11 @@ std::string bc_marker(int fn, int Z, int b, const char* bcname) {
     return bcname;
 }
 
-/// Union-find root with path halving.
-Index root(std::vector<Index>& parent, Index i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-}
-
-/// Merge nodes closer than `tol` among `candidates` (block faces of structured zones, where
-/// blocks meet 1-to-1 or a block meets itself at a cut) and renumber the mesh compactly.
-void merge_coincident(detail::RawMesh& raw, std::vector<Index> candidates, double tol) {
-    const auto nn = static_cast<Index>(raw.x.size() / 3);
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    std::sort(candidates.begin(), candidates.end(),
-              [&raw](Index a, Index b) { return raw.x[3 * a] < raw.x[3 * b]; });
-    std::vector<Index> parent(nn);
-    for (Index i = 0; i < nn; ++i) parent[i] = i;
-    bool any = false;
-    for (std::size_t a = 0; a < candidates.size(); ++a) {
-        const Index i = candidates[a];
-        for (std::size_t b = a + 1; b < candidates.size(); ++b) {
-            const Index j = candidates[b];
-            if (raw.x[3 * j] - raw.x[3 * i] > tol) break;
-            const double dy = raw.x[3 * j + 1] - raw.x[3 * i + 1];
-            const double dz = raw.x[3 * j + 2] - raw.x[3 * i + 2];
-            if (std::abs(dy) <= tol && std::abs(dz) <= tol) {
-                const Index ri = root(parent, i), rj = root(parent, j);
-                if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
-                any = true;
-            }
-        }
-    }
-    if (!any) return;
-    std::vector<Index> number(nn, -1);
-    std::vector<double> x;
-    x.reserve(raw.x.size());
-    for (Index i = 0; i < nn; ++i) {
-        const Index r = root(parent, i);
-        if (number[r] < 0) {
-            number[r] = static_cast<Index>(x.size() / 3);
-            x.insert(x.end(), raw.x.begin() + 3 * r, raw.x.begin() + 3 * r + 3);
-        }
-        number[i] = number[r];
-    }
-    raw.x = std::move(x);
-    for (auto& n : raw.cells.nodes) n = number[n];
-    for (auto& n : raw.faces.nodes) n = number[n];
-}
-
 /// Add one structured zone (cells as hexahedra or, in 2-D, quadrilaterals; boundary conditions
-/// with point ranges as faces) to `raw`; its block-face nodes go to `block_faces`.
+/// given as point ranges or point lists, as faces) to `raw`; cells are numbered on from
+/// `serial` (i fastest), which is advanced past them.
 void add_structured_zone(int fn, int Z, int cell_dim, int phys_dim, const std::string& src,
-                         detail::RawMesh& raw, std::vector<Index>& block_faces) {
+                         detail::RawMesh& raw, std::int64_t& serial) {
     const auto check = [&src](int rc, const std::string& where) {
         if (rc != CG_OK) throw InputError(fmt::format("{}: {}: {}", src, where, cg_get_error()));
     };
@@ -167,7 +121,6 @@ void add_structured_zone(int fn, int Z, int cell_dim, int phys_dim, const std::s
     const Eigen::Vector3d ej = p(id(0, 1, 0)) - p(id(0, 0, 0));
     const bool left = cell_dim == 3 ? ei.cross(ej).dot(p(id(0, 0, 1)) - p(id(0, 0, 0))) < 0.0
                                     : ei.cross(ej).z() < 0.0;
-    std::int64_t serial = static_cast<std::int64_t>(raw.cells.size());
     for (cgsize_t k = 0; k < std::max<cgsize_t>(nv[2] - 1, 1); ++k)
         for (cgsize_t j = 0; j < nv[1] - 1; ++j)
             for (cgsize_t i = 0; i < nv[0] - 1; ++i) {
@@ -192,14 +145,33 @@ void add_structured_zone(int fn, int Z, int cell_dim, int phys_dim, const std::s
                     raw.cells.add(RawType::quad, q.data(), serial);
                 }
             }
-    // Block-face nodes: candidates for merging with other blocks (or this one, at a cut).
-    for (cgsize_t k = 0; k < nv[2]; ++k)
-        for (cgsize_t j = 0; j < nv[1]; ++j)
-            for (cgsize_t i = 0; i < nv[0]; ++i) {
-                const bool face = i == 0 || i == nv[0] - 1 || j == 0 || j == nv[1] - 1 ||
-                                  (cell_dim == 3 && (k == 0 || k == nv[2] - 1));
-                if (face) block_faces.push_back(id(i, j, k));
-            }
+    // Nodes of the block-face element with lower corner q (q[fixed] the plane's vertex index):
+    // a quadrilateral, or in 2-D an edge along the other direction.
+    const auto face_nodes = [&](int fixed, const std::array<cgsize_t, 3>& q,
+                                std::array<Index, 4>& out) -> int {
+        if (cell_dim == 2) {
+            std::array<cgsize_t, 3> q1 = q;
+            q1[fixed == 0 ? 1 : 0] += 1;
+            out = {id(q[0], q[1], 0), id(q1[0], q1[1], 0), 0, 0};
+            return 2;
+        }
+        const int a = (fixed + 1) % 3, c = (fixed + 2) % 3;
+        std::array<cgsize_t, 3> q1 = q, q2 = q, q3 = q;
+        q1[a] += 1;
+        q2[a] += 1;
+        q2[c] += 1;
+        q3[c] += 1;
+        out = {id(q[0], q[1], q[2]), id(q1[0], q1[1], q1[2]), id(q2[0], q2[1], q2[2]),
+               id(q3[0], q3[1], q3[2])};
+        return 4;
+    };
+    const auto add_face = [&](int fixed, const std::array<cgsize_t, 3>& q, int marker) {
+        std::array<Index, 4> f{};
+        const int n = face_nodes(fixed, q, f);
+        raw.faces.add(n == 2 ? RawType::line : RawType::quad, f.data(), 0, marker);
+    };
+    // Number of cells in direction d (one across the third direction of a 2-D zone).
+    const auto ncell = [&](int d) { return d < cell_dim ? nv[d] - 1 : cgsize_t{1}; };
 
     int nbc = 0;
     check(cg_nbocos(fn, 1, Z, &nbc), zone + " boundary conditions");
@@ -217,11 +189,85 @@ void add_structured_zone(int fn, int Z, int cell_dim, int phys_dim, const std::s
               where);
         CGNS_ENUMT(GridLocation_t) loc = CGNS_ENUMV(Vertex);
         check(cg_boco_gridlocation_read(fn, 1, Z, b, &loc), where);
+        const bool vertex = loc == CGNS_ENUMV(Vertex);
+        if (ptype == CGNS_ENUMV(PointList)) {
+            // I/J/KFaceCenter lists name faces (the plane's vertex index, the other two cell
+            // indices); vertex lists name vertices, and every block-face element whose nodes
+            // are all listed is taken.
+            const int face_dir = loc == CGNS_ENUMV(IFaceCenter)   ? 0
+                                 : loc == CGNS_ENUMV(JFaceCenter) ? 1
+                                 : loc == CGNS_ENUMV(KFaceCenter) ? 2
+                                                                  : -1;
+            if (!vertex && (face_dir < 0 || face_dir >= cell_dim))
+                throw InputError(
+                    fmt::format("{}: {} '{}': a point list at location {}; expected Vertex, "
+                                "IFaceCenter, JFaceCenter or KFaceCenter on a structured zone",
+                                src, where, bcname, cg_GridLocationName(loc)));
+            if (npnts < 1 || npnts > total)
+                throw InputError(fmt::format("{}: {} '{}': {} points; expected 1 to {}", src, where,
+                                             bcname, npnts, total));
+            std::vector<cgsize_t> pts(static_cast<std::size_t>(cell_dim * npnts));
+            check(cg_boco_read(fn, 1, Z, b, pts.data(), nullptr), where);
+            const int marker = raw.marker(bc_marker(fn, Z, b, bcname));
+            if (vertex) {
+                std::vector<char> in(static_cast<std::size_t>(total), 0);
+                for (cgsize_t p = 0; p < npnts; ++p) {
+                    std::array<cgsize_t, 3> q{0, 0, 0};
+                    for (int d = 0; d < cell_dim; ++d) {
+                        q[d] = pts[cell_dim * p + d] - 1;
+                        if (q[d] < 0 || q[d] >= nv[d])
+                            throw InputError(
+                                fmt::format("{}: {} '{}': point {} has index {} in direction {}; "
+                                            "expected 1 to {}",
+                                            src, where, bcname, p + 1, q[d] + 1, d + 1, nv[d]));
+                    }
+                    in[static_cast<std::size_t>(id(q[0], q[1], q[2]) - offset)] = 1;
+                }
+                for (int d = 0; d < cell_dim; ++d)
+                    for (cgsize_t plane : {cgsize_t{0}, nv[d] - 1}) {
+                        const int a = (d + 1) % 3, c = (d + 2) % 3;
+                        for (cgsize_t u = 0; u < ncell(a); ++u)
+                            for (cgsize_t v = 0; v < ncell(c); ++v) {
+                                std::array<cgsize_t, 3> q{};
+                                q[d] = plane;
+                                q[a] = u;
+                                q[c] = v;
+                                std::array<Index, 4> fv{};
+                                const int n = face_nodes(d, q, fv);
+                                bool all = true;
+                                for (int k = 0; k < n; ++k)
+                                    all = all && in[static_cast<std::size_t>(fv[k] - offset)];
+                                if (all) add_face(d, q, marker);
+                            }
+                    }
+            } else {
+                for (cgsize_t p = 0; p < npnts; ++p) {
+                    std::array<cgsize_t, 3> q{0, 0, 0};
+                    for (int d = 0; d < cell_dim; ++d) {
+                        q[d] = pts[cell_dim * p + d] - 1;
+                        const cgsize_t top = d == face_dir ? nv[d] - 1 : nv[d] - 2;
+                        if (q[d] < 0 || q[d] > top)
+                            throw InputError(
+                                fmt::format("{}: {} '{}': face {} has index {} in direction {}; "
+                                            "expected 1 to {}",
+                                            src, where, bcname, p + 1, q[d] + 1, d + 1, top + 1));
+                    }
+                    if (q[face_dir] != 0 && q[face_dir] != nv[face_dir] - 1)
+                        throw InputError(
+                            fmt::format("{}: {} '{}': face {} lies inside the zone (index {} in "
+                                        "direction {}); expected a block face (1 or {})",
+                                        src, where, bcname, p + 1, q[face_dir] + 1, face_dir + 1,
+                                        nv[face_dir]));
+                    add_face(face_dir, q, marker);
+                }
+            }
+            continue;
+        }
         if (ptype != CGNS_ENUMV(PointRange) || npnts != 2)
             throw InputError(
-                fmt::format("{}: {} '{}' is not a point range; expected a "
-                            "PointRange on a structured zone",
-                            src, where, bcname));
+                fmt::format("{}: {} '{}' is a {} of {} points; expected a PointRange of 2 "
+                            "points or a PointList on a structured zone",
+                            src, where, bcname, cg_PointSetTypeName(ptype), npnts));
         std::array<cgsize_t, 6> r{};
         check(cg_boco_read(fn, 1, Z, b, r.data(), nullptr), where);
         // Constant direction; vertex ranges span vertices, face-centre ranges span cells.
@@ -237,7 +283,6 @@ void add_structured_zone(int fn, int Z, int cell_dim, int phys_dim, const std::s
                 fmt::format("{}: {} '{}': the range has no constant index; expected "
                             "a block face",
                             src, where, bcname));
-        const bool vertex = loc == CGNS_ENUMV(Vertex);
         for (int d = 0; d < cell_dim; ++d) {
             if (d == fixed) {
                 if (lo[d] < 0 || lo[d] >= nv[d] + (vertex ? 0 : 1))
@@ -269,123 +314,60 @@ void add_structured_zone(int fn, int Z, int cell_dim, int phys_dim, const std::s
                 q[fixed] = lo[fixed];
                 q[a] = u;
                 q[c] = v;
-                if (cell_dim == 2) {
-                    // An edge: fixed direction constant, the other (not 2) runs one cell.
-                    const int run = fixed == 0 ? 1 : 0;
-                    std::array<cgsize_t, 3> q1 = q;
-                    q1[run] += 1;
-                    const std::array<Index, 2> l{id(q[0], q[1], 0), id(q1[0], q1[1], 0)};
-                    raw.faces.add(RawType::line, l.data(), 0, marker);
-                } else {
-                    std::array<cgsize_t, 3> q1 = q, q2 = q, q3 = q;
-                    q1[a] += 1;
-                    q2[a] += 1;
-                    q2[c] += 1;
-                    q3[c] += 1;
-                    const std::array<Index, 4> f{id(q[0], q[1], q[2]), id(q1[0], q1[1], q1[2]),
-                                                 id(q2[0], q2[1], q2[2]), id(q3[0], q3[1], q3[2])};
-                    raw.faces.add(RawType::quad, f.data(), 0, marker);
-                }
+                add_face(fixed, q, marker);
             }
     }
 }
 
-}  // namespace
-
-Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
-    const std::string src = file.string();
-    if (!std::filesystem::exists(file))
-        throw IoError(fmt::format("{}: cannot open the mesh file for reading (no such file)", src));
-    CgnsFile f;
-    if (cg_open(src.c_str(), CG_MODE_READ, &f.fn) != CG_OK) {
-        f.fn = -1;
-        throw IoError(
-            fmt::format("{}: cannot open as CGNS ({}); expected a CGNS file", src, cg_get_error()));
-    }
+/// Add one unstructured zone (cells; face elements, marked by the boundary conditions that
+/// name them, else by their section's name) to `raw`. A cell's source number is `serial` plus
+/// its CGNS element number; returns the zone's largest element number.
+std::int64_t add_unstructured_zone(int fn, int Z, int cell_dim, int phys_dim,
+                                   const std::string& src, detail::RawMesh& raw,
+                                   std::int64_t serial) {
     const auto check = [&src](int rc, const std::string& where) {
         if (rc != CG_OK) throw InputError(fmt::format("{}: {}: {}", src, where, cg_get_error()));
     };
-    int nbases = 0;
-    check(cg_nbases(f.fn, &nbases), "reading the bases");
-    if (nbases < 1) throw InputError(fmt::format("{}: no CGNS base; expected one", src));
-    char bname[33] = {};
-    int cell_dim = 0, phys_dim = 0;
-    check(cg_base_read(f.fn, 1, bname, &cell_dim, &phys_dim), "base 1");
-    if (cell_dim != 2 && cell_dim != 3)
-        throw InputError(fmt::format("{}: base '{}' has cell dimension {}; expected 2 or 3", src,
-                                     bname, cell_dim));
-    int nzones = 0;
-    check(cg_nzones(f.fn, 1, &nzones), "reading the zones");
-    if (nzones < 1) throw InputError(fmt::format("{}: base '{}' has no zone", src, bname));
-    int n_structured = 0;
-    for (int z = 1; z <= nzones; ++z) {
-        CGNS_ENUMT(ZoneType_t) t{};
-        check(cg_zone_type(f.fn, 1, z, &t), fmt::format("zone {}", z));
-        n_structured += t == CGNS_ENUMV(Structured);
-    }
-    if (n_structured == nzones) {
-        // Structured blocks: hexahedra, merged where blocks meet (coincident nodes).
-        detail::RawMesh raw;
-        raw.source = src;
-        raw.where_label = "structured cell (counted over the zones, i fastest)";
-        raw.dim = cell_dim;
-        std::vector<Index> block_faces;
-        for (int z = 1; z <= nzones; ++z)
-            add_structured_zone(f.fn, z, cell_dim, phys_dim, src, raw, block_faces);
-        Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-        for (std::size_t i = 0; i < raw.x.size() / 3; ++i)
-            for (int k = 0; k < 3; ++k) {
-                lo[k] = std::min(lo[k], raw.x[3 * i + k]);
-                hi[k] = std::max(hi[k], raw.x[3 * i + k]);
-            }
-        merge_coincident(raw, std::move(block_faces), 1e-10 * (hi - lo).norm());
-        return detail::build_mesh(std::move(raw), options);
-    }
-    if (nzones != 1)
-        throw InputError(
-            fmt::format("{}: base '{}' has {} zones, {} of them unstructured; "
-                        "expected one unstructured zone or only structured zones",
-                        src, bname, nzones, nzones - n_structured));
     char zname[33] = {};
     cgsize_t size[9] = {};
-    check(cg_zone_read(f.fn, 1, 1, zname, size), "zone 1");
+    check(cg_zone_read(fn, 1, Z, zname, size), fmt::format("zone {}", Z));
     const std::string zone = fmt::format("zone '{}'", zname);
     const cgsize_t nv = size[0];
     if (nv <= 0 || nv > std::numeric_limits<Index>::max())
         throw InputError(fmt::format("{}: {} has {} vertices; expected 1 to {}", src, zone, nv,
                                      std::numeric_limits<Index>::max()));
 
-    detail::RawMesh raw;
-    raw.source = src;
-    raw.where_label = fmt::format("{} element", zone);
-    raw.dim = cell_dim;
-    raw.x.assign(3 * static_cast<std::size_t>(nv), 0.0);
+    if (nv + static_cast<cgsize_t>(raw.x.size() / 3) > std::numeric_limits<Index>::max())
+        throw InputError(fmt::format("{}: {} makes the mesh too large", src, zone));
+    const auto offset = static_cast<Index>(raw.x.size() / 3);
+    raw.x.resize(raw.x.size() + 3 * static_cast<std::size_t>(nv), 0.0);
     {
         std::vector<double> c(static_cast<std::size_t>(nv));
         const char* names[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
         cgsize_t rmin = 1, rmax = nv;
         for (int k = 0; k < std::min(phys_dim, 3); ++k) {
-            check(
-                cg_coord_read(f.fn, 1, 1, names[k], CGNS_ENUMV(RealDouble), &rmin, &rmax, c.data()),
-                fmt::format("{} {}", zone, names[k]));
-            for (cgsize_t i = 0; i < nv; ++i) raw.x[3 * i + k] = c[i];
+            check(cg_coord_read(fn, 1, Z, names[k], CGNS_ENUMV(RealDouble), &rmin, &rmax, c.data()),
+                  fmt::format("{} {}", zone, names[k]));
+            for (cgsize_t i = 0; i < nv; ++i) raw.x[3 * (offset + i) + k] = c[i];
         }
     }
 
     int nsec = 0;
-    check(cg_nsections(f.fn, 1, 1, &nsec), zone + " sections");
+    check(cg_nsections(fn, 1, Z, &nsec), zone + " sections");
     std::vector<std::string> section_names(nsec + 1);
     std::vector<Boundary> bnd;
     std::unordered_map<std::int64_t, std::size_t> bnd_of_element;
     std::vector<cgsize_t> conn, offs;
+    std::int64_t last = 0;
     for (int s = 1; s <= nsec; ++s) {
         char sname[33] = {};
         CGNS_ENUMT(ElementType_t) stype{};
         cgsize_t start = 0, end = 0;
         int nbndry = 0, parent_flag = 0;
-        check(cg_section_read(f.fn, 1, 1, s, sname, &stype, &start, &end, &nbndry, &parent_flag),
+        check(cg_section_read(fn, 1, Z, s, sname, &stype, &start, &end, &nbndry, &parent_flag),
               fmt::format("{} section {}", zone, s));
         section_names[s] = sname;
+        last = std::max<std::int64_t>(last, end);
         const std::string where = fmt::format("{} section '{}'", zone, sname);
         if (start < 1 || end < start)
             throw InputError(fmt::format("{}: {}: element range {}..{}; expected 1 <= start <= end",
@@ -393,16 +375,16 @@ Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
         // Read exactly the announced range (a file whose arrays disagree with it cannot make
         // the library write past the buffers).
         cgsize_t data_size = 0;
-        check(cg_ElementPartialSize(f.fn, 1, 1, s, start, end, &data_size), where);
+        check(cg_ElementPartialSize(fn, 1, Z, s, start, end, &data_size), where);
         conn.resize(static_cast<std::size_t>(std::max<cgsize_t>(data_size, 1)));
         const bool mixed = stype == CGNS_ENUMV(MIXED);
         if (mixed) {
             offs.resize(static_cast<std::size_t>(end - start + 2));
-            check(cg_poly_elements_partial_read(f.fn, 1, 1, s, start, end, conn.data(), offs.data(),
+            check(cg_poly_elements_partial_read(fn, 1, Z, s, start, end, conn.data(), offs.data(),
                                                 nullptr),
                   where);
         } else {
-            check(cg_elements_partial_read(f.fn, 1, 1, s, start, end, conn.data(), nullptr), where);
+            check(cg_elements_partial_read(fn, 1, Z, s, start, end, conn.data(), nullptr), where);
         }
         std::size_t pos = 0;
         for (cgsize_t e = start; e <= end; ++e) {
@@ -439,7 +421,7 @@ Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
                         fmt::format("{}: {} element {}: node {}; expected 1 to {} "
                                     "(1-based)",
                                     src, where, e, v, nv));
-                n[k] = static_cast<Index>(v - 1);
+                n[k] = offset + static_cast<Index>(v - 1);
             }
             pos += static_cast<std::size_t>(nn);
             if (t == RawType::prism) {  // CGNS PENTA_6: (1,2,3) normal toward (4,5,6); VTK: away
@@ -448,7 +430,7 @@ Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
             }
             const int d = detail::raw_dim(t);
             if (d == cell_dim) {
-                raw.cells.add(t, n.data(), e);
+                raw.cells.add(t, n.data(), serial + e);
             } else if (d == cell_dim - 1) {
                 Boundary b{t, {n[0], n[1], n[2], n[3]}, e, s};
                 bnd_of_element[e] = bnd.size();
@@ -459,7 +441,7 @@ Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
 
     // Boundary conditions name the faces: by element numbers, or by their vertices.
     int nbc = 0;
-    check(cg_nbocos(f.fn, 1, 1, &nbc), zone + " boundary conditions");
+    check(cg_nbocos(fn, 1, Z, &nbc), zone + " boundary conditions");
     for (int b = 1; b <= nbc; ++b) {
         char bcname[33] = {};
         CGNS_ENUMT(BCType_t) bctype{};
@@ -469,14 +451,14 @@ Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
         CGNS_ENUMT(DataType_t) ndt{};
         int ndataset = 0;
         const std::string where = fmt::format("{} boundary condition {}", zone, b);
-        check(cg_boco_info(f.fn, 1, 1, b, bcname, &bctype, &ptype, &npnts, normal_index, &nlist,
-                           &ndt, &ndataset),
+        check(cg_boco_info(fn, 1, Z, b, bcname, &bctype, &ptype, &npnts, normal_index, &nlist, &ndt,
+                           &ndataset),
               where);
         CGNS_ENUMT(GridLocation_t) loc = CGNS_ENUMV(Vertex);
-        check(cg_boco_gridlocation_read(f.fn, 1, 1, b, &loc), where);
+        check(cg_boco_gridlocation_read(fn, 1, Z, b, &loc), where);
         std::vector<cgsize_t> pts(static_cast<std::size_t>(std::max<cgsize_t>(npnts, 1)));
-        check(cg_boco_read(f.fn, 1, 1, b, pts.data(), nullptr), where);
-        const int marker = raw.marker(bc_marker(f.fn, 1, b, bcname));
+        check(cg_boco_read(fn, 1, Z, b, pts.data(), nullptr), where);
+        const int marker = raw.marker(bc_marker(fn, Z, b, bcname));
         const bool range = ptype == CGNS_ENUMV(PointRange) || ptype == CGNS_ENUMV(ElementRange);
         const bool by_element = ptype == CGNS_ENUMV(ElementRange) ||
                                 ptype == CGNS_ENUMV(ElementList) || loc != CGNS_ENUMV(Vertex);
@@ -510,15 +492,85 @@ Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
             for (auto& bf : bnd) {
                 bool all = true;
                 for (int k = 0; k < detail::raw_node_count(bf.type); ++k)
-                    all = all && in[bf.nodes[k]];
+                    all = all && in[bf.nodes[k] - offset];
                 if (all && bf.marker < 0) bf.marker = marker;
             }
         }
     }
     for (auto& bf : bnd) {
         if (bf.marker < 0) bf.marker = raw.marker(section_names[bf.section]);
-        raw.faces.add(bf.type, bf.nodes.data(), bf.element, bf.marker);
+        raw.faces.add(bf.type, bf.nodes.data(), serial + bf.element, bf.marker);
     }
+    return last;
+}
+
+}  // namespace
+
+Mesh read_cgns(const std::filesystem::path& file, const ReadOptions& options) {
+    const std::string src = file.string();
+    if (!std::filesystem::exists(file))
+        throw IoError(fmt::format("{}: cannot open the mesh file for reading (no such file)", src));
+    CgnsFile f;
+    if (cg_open(src.c_str(), CG_MODE_READ, &f.fn) != CG_OK) {
+        f.fn = -1;
+        throw IoError(
+            fmt::format("{}: cannot open as CGNS ({}); expected a CGNS file", src, cg_get_error()));
+    }
+    const auto check = [&src](int rc, const std::string& where) {
+        if (rc != CG_OK) throw InputError(fmt::format("{}: {}: {}", src, where, cg_get_error()));
+    };
+    int nbases = 0;
+    check(cg_nbases(f.fn, &nbases), "reading the bases");
+    if (nbases < 1) throw InputError(fmt::format("{}: no CGNS base; expected one", src));
+    char bname[33] = {};
+    int cell_dim = 0, phys_dim = 0;
+    check(cg_base_read(f.fn, 1, bname, &cell_dim, &phys_dim), "base 1");
+    if (cell_dim != 2 && cell_dim != 3)
+        throw InputError(fmt::format("{}: base '{}' has cell dimension {}; expected 2 or 3", src,
+                                     bname, cell_dim));
+    int nzones = 0;
+    check(cg_nzones(f.fn, 1, &nzones), "reading the zones");
+    if (nzones < 1) throw InputError(fmt::format("{}: base '{}' has no zone", src, bname));
+    std::vector<bool> structured(static_cast<std::size_t>(nzones) + 1, false);
+    for (int z = 1; z <= nzones; ++z) {
+        CGNS_ENUMT(ZoneType_t) t{};
+        check(cg_zone_type(f.fn, 1, z, &t), fmt::format("zone {}", z));
+        if (t != CGNS_ENUMV(Structured) && t != CGNS_ENUMV(Unstructured))
+            throw InputError(
+                fmt::format("{}: zone {} has zone type {}; expected Structured or "
+                            "Unstructured",
+                            src, z, cg_ZoneTypeName(t)));
+        structured[z] = t == CGNS_ENUMV(Structured);
+    }
+
+    detail::RawMesh raw;
+    raw.source = src;
+    raw.dim = cell_dim;
+    if (nzones == 1 && !structured[1]) {
+        // One unstructured zone: read as it is (coincident nodes stay apart).
+        char zname[33] = {};
+        cgsize_t size[9] = {};
+        check(cg_zone_read(f.fn, 1, 1, zname, size), "zone 1");
+        raw.where_label = fmt::format("zone '{}' element", zname);
+        (void)add_unstructured_zone(f.fn, 1, cell_dim, phys_dim, src, raw, 0);
+        return detail::build_mesh(std::move(raw), options);
+    }
+    // Several zones, or structured blocks: each zone's cells and boundary faces, then the
+    // nodes on exposed faces that coincide (zone interfaces, block cuts) merged, and boundary
+    // faces that became interior (interface sections or conditions) dropped.
+    raw.where_label = nzones == 1 ? "structured cell (i fastest)"
+                                  : "element (numbered over the zones in file order, each "
+                                    "zone's numbers after the previous zone's last)";
+    std::int64_t serial = 0;
+    for (int z = 1; z <= nzones; ++z) {
+        if (structured[z])
+            add_structured_zone(f.fn, z, cell_dim, phys_dim, src, raw, serial);
+        else
+            serial += add_unstructured_zone(f.fn, z, cell_dim, phys_dim, src, raw, serial);
+    }
+    const Index merged =
+        detail::merge_coincident(raw, detail::exposed_nodes(raw), detail::merge_tolerance(raw));
+    if (merged > 0) detail::drop_interior_faces(raw);
     return detail::build_mesh(std::move(raw), options);
 }
 

@@ -265,7 +265,164 @@ Mesh extrude_2d(RawMesh& raw, const ReadOptions& opt) {
     return build_3d(out);
 }
 
+/// A face (or an edge of a 2-D cell) as its sorted node numbers, padded with -1.
+using FaceKey = std::array<Index, 4>;
+
+FaceKey face_key(const Index* n, int count) {
+    FaceKey k{-1, -1, -1, -1};
+    std::copy_n(n, count, k.begin());
+    std::sort(k.begin(), k.begin() + count);
+    return k;
+}
+
+/// Keys of every face of every cell, sorted (a face shared by two cells appears twice).
+std::vector<FaceKey> cell_face_keys(const RawMesh& raw) {
+    std::vector<FaceKey> keys;
+    keys.reserve(6 * raw.cells.size());
+    for (std::size_t c = 0; c < raw.cells.size(); ++c) {
+        const RawType t = raw.cells.types[c];
+        const Index* n = raw.cells.nodes.data() + raw.cells.offsets[c];
+        if (raw_dim(t) == 3) {
+            for (const auto& f : cell_faces(cell_type_of(t))) {
+                const int nf = f[3] < 0 ? 3 : 4;
+                std::array<Index, 4> v{};
+                for (int k = 0; k < nf; ++k) v[k] = n[f[k]];
+                keys.push_back(face_key(v.data(), nf));
+            }
+        } else if (raw_dim(t) == 2) {
+            const int nn = raw_node_count(t);
+            for (int k = 0; k < nn; ++k) {
+                const std::array<Index, 2> e{n[k], n[(k + 1) % nn]};
+                keys.push_back(face_key(e.data(), 2));
+            }
+        }
+    }
+    std::sort(keys.begin(), keys.end());
+    return keys;
+}
+
 }  // namespace
+
+std::vector<Index> exposed_nodes(const RawMesh& raw) {
+    const std::vector<FaceKey> keys = cell_face_keys(raw);
+    std::vector<Index> out;
+    for (std::size_t i = 0; i < keys.size();) {
+        std::size_t j = i + 1;
+        while (j < keys.size() && keys[j] == keys[i]) ++j;
+        if (j - i == 1)
+            for (Index n : keys[i])
+                if (n >= 0) out.push_back(n);
+        i = j;
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+double merge_tolerance(const RawMesh& raw, double relative) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (std::size_t i = 0; i < raw.x.size() / 3; ++i)
+        for (int k = 0; k < 3; ++k)
+            if (std::isfinite(raw.x[3 * i + k])) {
+                lo[k] = std::min(lo[k], raw.x[3 * i + k]);
+                hi[k] = std::max(hi[k], raw.x[3 * i + k]);
+            }
+    const double t = relative * (hi - lo).norm();
+    return std::isfinite(t) ? t : 0.0;
+}
+
+namespace {
+
+/// Union-find root with path halving.
+Index root(std::vector<Index>& parent, Index i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+}  // namespace
+
+Index merge_coincident(RawMesh& raw, std::vector<Index> candidates, double tol) {
+    const auto nn = static_cast<Index>(raw.x.size() / 3);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    // Sweep along an oblique direction: block faces and symmetry planes are often planes
+    // x = const, which would put all their nodes in one window of a sweep along x.
+    constexpr double d0 = 1.0, d1 = 0.6180339887, d2 = 0.3819660113;
+    const auto along = [&raw](Index a) {
+        return d0 * raw.x[3 * a] + d1 * raw.x[3 * a + 1] + d2 * raw.x[3 * a + 2];
+    };
+    std::vector<double> key(static_cast<std::size_t>(nn), 0.0);
+    for (Index a : candidates) key[a] = along(a);
+    // Non-finite coordinates (rejected later by finalize) must not reach the sort's comparison.
+    std::erase_if(candidates, [&key](Index a) { return !std::isfinite(key[a]); });
+    std::sort(candidates.begin(), candidates.end(),
+              [&key](Index a, Index b) { return key[a] < key[b]; });
+    const double window = (d0 + d1 + d2) * tol;  // |key difference| of nodes within tol
+    std::vector<Index> parent(static_cast<std::size_t>(nn));
+    for (Index i = 0; i < nn; ++i) parent[i] = i;
+    bool any = false;
+    for (std::size_t a = 0; a < candidates.size(); ++a) {
+        const Index i = candidates[a];
+        for (std::size_t b = a + 1; b < candidates.size(); ++b) {
+            const Index j = candidates[b];
+            if (key[j] - key[i] > window) break;
+            const double dx = raw.x[3 * j] - raw.x[3 * i];
+            const double dy = raw.x[3 * j + 1] - raw.x[3 * i + 1];
+            const double dz = raw.x[3 * j + 2] - raw.x[3 * i + 2];
+            if (std::abs(dx) <= tol && std::abs(dy) <= tol && std::abs(dz) <= tol) {
+                const Index ri = root(parent, i), rj = root(parent, j);
+                if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+                any = true;
+            }
+        }
+    }
+    if (!any) return 0;
+    std::vector<Index> number(static_cast<std::size_t>(nn), -1);
+    std::vector<double> x;
+    x.reserve(raw.x.size());
+    for (Index i = 0; i < nn; ++i) {
+        const Index r = root(parent, i);
+        if (number[r] < 0) {
+            number[r] = static_cast<Index>(x.size() / 3);
+            x.insert(x.end(), raw.x.begin() + 3 * r, raw.x.begin() + 3 * r + 3);
+        }
+        number[i] = number[r];
+    }
+    const Index removed = nn - static_cast<Index>(x.size() / 3);
+    raw.x = std::move(x);
+    for (auto& n : raw.cells.nodes) n = number[n];
+    for (auto& n : raw.faces.nodes) n = number[n];
+    return removed;
+}
+
+std::size_t drop_interior_faces(RawMesh& raw) {
+    const std::vector<FaceKey> keys = cell_face_keys(raw);
+    RawElements kept;
+    std::vector<char> used(raw.markers.size(), 0);
+    for (std::size_t f = 0; f < raw.faces.size(); ++f) {
+        const RawType t = raw.faces.types[f];
+        const Index* n = raw.faces.nodes.data() + raw.faces.offsets[f];
+        const auto [lo, hi] =
+            std::equal_range(keys.begin(), keys.end(), face_key(n, raw_node_count(t)));
+        if (hi - lo >= 2) continue;
+        kept.add(t, n, raw.faces.where[f], raw.faces.marker[f]);
+        const int m = raw.faces.marker[f];
+        if (m >= 0 && static_cast<std::size_t>(m) < used.size()) used[m] = 1;
+    }
+    const std::size_t removed = raw.faces.size() - kept.size();
+    std::vector<int> number(raw.markers.size(), -1);
+    std::vector<std::string> names;
+    for (std::size_t m = 0; m < raw.markers.size(); ++m)
+        if (used[m]) {
+            number[m] = static_cast<int>(names.size());
+            names.push_back(raw.markers[m]);
+        }
+    for (auto& m : kept.marker)
+        if (m >= 0 && static_cast<std::size_t>(m) < number.size()) m = number[m];
+    raw.faces = std::move(kept);
+    raw.markers = std::move(names);
+    return removed;
+}
 
 Mesh build_mesh(RawMesh raw, const ReadOptions& options) {
     if (raw.dim == 2) return extrude_2d(raw, options);
@@ -276,6 +433,7 @@ bool LineCursor::next(std::string_view& line) {
     if (pos_ >= text_.size()) return false;
     const std::size_t end = text_.find('\n', pos_);
     const std::size_t stop = end == std::string_view::npos ? text_.size() : end;
+    line_start_ = pos_;
     line = text_.substr(pos_, stop - pos_);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     pos_ = stop + 1;
@@ -303,7 +461,8 @@ void LineCursor::require_lines(std::int64_t n, std::string_view what) const {
 }
 
 std::string LineCursor::at() const {
-    return fmt::format("{}: line {}", source_, line_);
+    return bytes_ ? fmt::format("{}: byte {}", source_, line_start_)
+                  : fmt::format("{}: line {}", source_, line_);
 }
 
 void LineCursor::fail(const std::string& what) const {

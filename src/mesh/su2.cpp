@@ -1,11 +1,14 @@
 /// @file su2.cpp
 /// SU2 native mesh reader (SU2 documentation, "Mesh File", su2code.github.io/docs_v7/Mesh-File):
 /// keyword lines NDIME=, NELEM=, NPOIN=, NMARK=, MARKER_TAG=, MARKER_ELEMS=, element lines
-/// "VTK-type node... [index]", point lines "x y [z] [index]"; '%' starts a comment.
+/// "VTK-type node... [index]", point lines "x y [z] [index]"; '%' starts a comment. Multi-zone
+/// files (NZONE= n, each zone after IZONE= k with its own 0-based node numbers) are joined into
+/// one mesh where the zones' exposed nodes coincide.
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 
 #include "detail/raw.hpp"
 #include "manta/core/error.hpp"
@@ -107,6 +110,12 @@ void read_elements(LineCursor& cur, std::int64_t n, detail::RawElements& out, in
     }
 }
 
+/// Union-find root with path halving (zones joined by shared nodes).
+int zone_root(std::vector<int>& parent, int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
 }  // namespace
 
 Mesh parse_su2(std::string_view text, const std::string& source, const ReadOptions& options) {
@@ -117,27 +126,81 @@ Mesh parse_su2(std::string_view text, const std::string& source, const ReadOptio
     bool have_points = false, have_elems = false;
     std::string_view line, value;
     std::vector<std::string_view> tok;
+    // Zones: node numbers are 0-based within a zone; each zone's cells and faces are shifted
+    // by the nodes of the zones before it when the zone ends (and checked against the zone's
+    // NPOIN= there; a single zone's are checked by Mesh::finalize).
+    std::int64_t nzone = 1, zone = 1, zone_header = 0;
+    Index node_base = 0, zone_points = 0;
+    std::size_t cell_base = 0, face_base = 0;
+    std::vector<std::size_t> zone_cells{0};  // first cell of each zone
+    std::set<std::string> zone_markers;
+    bool zone_points_read = false, zone_elems_read = false;
+    const auto end_zone = [&]() {
+        const std::string z = nzone > 1 ? fmt::format(" of zone {}", zone) : "";
+        if (!zone_elems_read)
+            throw InputError(fmt::format("{}: no NELEM= section{}; expected cells", source, z));
+        if (!zone_points_read)
+            throw InputError(fmt::format("{}: no NPOIN= section{}; expected points", source, z));
+        for (auto* el : {&raw.cells, &raw.faces}) {
+            const std::size_t first = el == &raw.cells ? cell_base : face_base;
+            for (std::size_t e = first; e < el->size(); ++e)
+                for (auto k = el->offsets[e]; k < el->offsets[e + 1]; ++k) {
+                    if (nzone > 1 && el->nodes[k] >= zone_points)
+                        throw InputError(fmt::format(
+                            "{}: line {}: node number {}{}; expected 0 to {} "
+                            "(NPOIN= {})",
+                            source, el->where[e], el->nodes[k], z, zone_points - 1, zone_points));
+                    el->nodes[k] += node_base;
+                }
+        }
+        node_base = static_cast<Index>(raw.x.size() / 3);
+        cell_base = raw.cells.size();
+        face_base = raw.faces.size();
+        zone_cells.push_back(cell_base);
+        zone_markers.clear();
+        zone_points_read = zone_elems_read = false;
+    };
     while (cur.next_content(line, '%')) {
         if (keyword(line, "NDIME", value)) {
-            ndime = static_cast<int>(count_value(value, cur, "NDIME"));
-            if (ndime != 2 && ndime != 3)
-                cur.fail(fmt::format("NDIME= {}; expected 2 or 3", ndime));
+            const int d = static_cast<int>(count_value(value, cur, "NDIME"));
+            if (d != 2 && d != 3) cur.fail(fmt::format("NDIME= {}; expected 2 or 3", d));
+            if (ndime != 0 && d != ndime)
+                cur.fail(fmt::format("NDIME= {} in zone {}; expected {} as in the zones before", d,
+                                     zone, ndime));
+            ndime = d;
             raw.dim = ndime;
         } else if (keyword(line, "NZONE", value)) {
-            if (count_value(value, cur, "NZONE") != 1)
-                cur.fail("NZONE is not 1; expected a single-zone mesh");
+            if (have_elems || have_points || zone_header > 0)
+                cur.fail("NZONE= after the first zone's data; expected it first");
+            nzone = count_value(value, cur, "NZONE");
+            if (nzone < 1) cur.fail(fmt::format("NZONE= {}; expected 1 or more", nzone));
+        } else if (keyword(line, "IZONE", value)) {
+            const auto k = count_value(value, cur, "IZONE");
+            const std::int64_t expected = zone_header == 0 ? 1 : zone + 1;
+            if (k != expected || k > nzone)
+                cur.fail(fmt::format("IZONE= {}; expected {} of NZONE= {}", k, expected, nzone));
+            if (zone_header > 0) end_zone();
+            zone = k;
+            zone_header = cur.line();
         } else if (keyword(line, "NELEM", value)) {
             if (ndime == 0) cur.fail("NELEM= before NDIME=; expected NDIME= first");
-            if (have_elems) cur.fail("a second NELEM= section; expected one");
+            if (zone_elems_read)
+                cur.fail(fmt::format("a second NELEM= section{}; expected one per zone",
+                                     nzone > 1 ? fmt::format(" in zone {}", zone) : ""));
             const auto n = count_value(value, cur, "NELEM");
             read_elements(cur, n, raw.cells, -1, "NELEM=", cur.line());
-            have_elems = true;
+            have_elems = zone_elems_read = true;
         } else if (keyword(line, "NPOIN", value)) {
             if (ndime == 0) cur.fail("NPOIN= before NDIME=; expected NDIME= first");
-            if (have_points) cur.fail("a second NPOIN= section; expected one");
+            if (zone_points_read)
+                cur.fail(fmt::format("a second NPOIN= section{}; expected one per zone",
+                                     nzone > 1 ? fmt::format(" in zone {}", zone) : ""));
             const auto n = count_value(value, cur, "NPOIN");
+            if (n + node_base > std::numeric_limits<Index>::max())
+                cur.fail(fmt::format("NPOIN= {} makes the mesh too large", n));
             const std::int64_t header = cur.line();
-            raw.x.resize(3 * static_cast<std::size_t>(n), 0.0);
+            zone_points = static_cast<Index>(n);
+            raw.x.resize(3 * static_cast<std::size_t>(node_base + n), 0.0);
             for (std::int64_t i = 0; i < n; ++i) {
                 if (!cur.next_content(line, '%'))
                     throw InputError(
@@ -152,9 +215,10 @@ Mesh parse_su2(std::string_view text, const std::string& source, const ReadOptio
                                     "and an optional index",
                                     tok.size(), ndime));
                 for (int k = 0; k < ndime; ++k)
-                    raw.x[3 * i + k] = detail::parse_number<double>(tok[k], cur, "coordinate");
+                    raw.x[3 * (node_base + i) + k] =
+                        detail::parse_number<double>(tok[k], cur, "coordinate");
             }
-            have_points = true;
+            have_points = zone_points_read = true;
         } else if (keyword(line, "NMARK", value)) {
             const auto nmark = count_value(value, cur, "NMARK");
             for (std::int64_t m = 0; m < nmark; ++m) {
@@ -165,8 +229,9 @@ Mesh parse_su2(std::string_view text, const std::string& source, const ReadOptio
                 if (tok.size() != 1)
                     cur.fail("MARKER_TAG= without a single name; expected one name without spaces");
                 const std::string name(tok[0]);
-                if (std::find(raw.markers.begin(), raw.markers.end(), name) != raw.markers.end())
-                    cur.fail(fmt::format("marker '{}' appears twice; expected unique names", name));
+                if (!zone_markers.insert(name).second)
+                    cur.fail(fmt::format("marker '{}' appears twice{}; expected unique names", name,
+                                         nzone > 1 ? fmt::format(" in zone {}", zone) : ""));
                 const int mk = raw.marker(name);
                 if (!cur.next_content(line, '%') || !keyword(line, "MARKER_ELEMS", value))
                     cur.fail(fmt::format("marker '{}': expected MARKER_ELEMS= count", name));
@@ -176,16 +241,22 @@ Mesh parse_su2(std::string_view text, const std::string& source, const ReadOptio
         } else if (line.find('=') == std::string_view::npos) {
             cur.fail(
                 fmt::format("unexpected line '{}'; expected a keyword line (NDIME=, NELEM=, "
-                            "NPOIN=, NMARK=)",
+                            "NPOIN=, NMARK=, NZONE=, IZONE=)",
                             line.substr(0, 40)));
         }
         // Other "KEY=" lines (e.g. FFD_NBOX=) are not needed here and skipped.
     }
     if (ndime == 0)
         throw InputError(fmt::format("{}: no NDIME= line; expected an SU2 mesh", source));
-    if (!have_elems) throw InputError(fmt::format("{}: no NELEM= section; expected cells", source));
-    if (!have_points)
-        throw InputError(fmt::format("{}: no NPOIN= section; expected points", source));
+    if (nzone > 1 && zone_header == 0)
+        throw InputError(fmt::format("{}: NZONE= {} but no IZONE= line; expected IZONE= 1 to {}",
+                                     source, nzone, nzone));
+    if (zone != nzone)
+        throw InputError(
+            fmt::format("{}: the file ends after zone {} of NZONE= {}; expected {} "
+                        "more (truncated file?)",
+                        source, zone, nzone, nzone - zone));
+    end_zone();
     for (std::size_t c = 0; c < raw.cells.size(); ++c)
         if (detail::raw_dim(raw.cells.types[c]) != ndime)
             throw InputError(fmt::format(
@@ -198,6 +269,31 @@ Mesh parse_su2(std::string_view text, const std::string& source, const ReadOptio
                 "{}: line {}: a {}-D element in a marker of an NDIME= {} "
                 "mesh; expected {}-D boundary elements",
                 source, raw.faces.where[f], detail::raw_dim(raw.faces.types[f]), ndime, ndime - 1));
+    if (nzone > 1) {
+        // Join the zones at coincident nodes on their exposed faces; interface markers, now
+        // inside the mesh, are dropped. Zones that touch no other zone cannot be joined.
+        detail::merge_coincident(raw, detail::exposed_nodes(raw), detail::merge_tolerance(raw));
+        std::vector<int> parent(static_cast<std::size_t>(nzone));
+        for (int z = 0; z < nzone; ++z) parent[z] = z;
+        std::vector<int> owner(raw.x.size() / 3, -1);
+        for (int z = 0; z < nzone; ++z)
+            for (std::size_t c = zone_cells[z]; c < zone_cells[z + 1]; ++c)
+                for (auto k = raw.cells.offsets[c]; k < raw.cells.offsets[c + 1]; ++k) {
+                    int& o = owner[static_cast<std::size_t>(raw.cells.nodes[k])];
+                    if (o < 0)
+                        o = z;
+                    else if (o != z)
+                        parent[zone_root(parent, z)] = zone_root(parent, o);
+                }
+        for (int z = 1; z < nzone; ++z)
+            if (zone_root(parent, z) != zone_root(parent, 0))
+                throw InputError(
+                    fmt::format("{}: NZONE= {}: zone {} shares no node with zone 1; expected "
+                                "zones that meet at coincident nodes (zones joined by sliding "
+                                "or non-matching interfaces are not read)",
+                                source, nzone, z + 1));
+        detail::drop_interior_faces(raw);
+    }
     return detail::build_mesh(std::move(raw), options);
 }
 

@@ -30,10 +30,11 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
 }
 
 /// Mesh the box [0,lx] x [0,ly] x [0,lz] with cells of about size h and write it to each of
-/// `files` (format from the extension; `msh_version` 2.2 or 4.1 for .msh). Surfaces are
-/// physical groups "side_<tag>", the volume "fluid".
+/// `files` (format from the extension; `msh_version` 2.2 or 4.1 for .msh, binary if `binary`).
+/// Surfaces are physical groups "side_<tag>", the volume "fluid".
 inline void make_box(BoxKind kind, double lx, double ly, double lz, double h,
-                     const std::vector<std::filesystem::path>& files, double msh_version = 4.1) {
+                     const std::vector<std::filesystem::path>& files, double msh_version = 4.1,
+                     bool binary = false) {
     gmsh::initialize();
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::option::setNumber("General.NumThreads", 1);
@@ -70,7 +71,7 @@ inline void make_box(BoxKind kind, double lx, double ly, double lz, double h,
     gmsh::model::setPhysicalName(3, gv, "fluid");
     gmsh::model::mesh::generate(3);
     gmsh::option::setNumber("Mesh.MshFileVersion", msh_version);
-    gmsh::option::setNumber("Mesh.Binary", 0);
+    gmsh::option::setNumber("Mesh.Binary", binary ? 1 : 0);
     for (const auto& f : files) gmsh::write(f.string());
     gmsh::finalize();
 }

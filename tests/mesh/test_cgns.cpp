@@ -1,7 +1,9 @@
 /// @file test_cgns.cpp
 /// The CGNS reader on files written here with the CGNS library from gmsh meshes: cells in one
 /// section per type or in a MIXED section; boundary conditions given by face-element ranges,
-/// by vertex lists, or absent (face sections name the markers).
+/// by vertex lists, or absent (face sections name the markers); the box split into three
+/// unstructured zones; structured blocks, also with point-list boundary conditions and next to
+/// an unstructured zone.
 
 #include <cgnslib.h>
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@
 #include "manta/core/error.hpp"
 #include "manta/mesh/readers.hpp"
 #include "metrics_checks.hpp"
+#include "zone_split.hpp"
 
 namespace manta::mesh {
 namespace {
@@ -275,6 +278,244 @@ TEST(Cgns, ErrorsNameFileAndZone) {
             << e.what();
     }
     EXPECT_THROW((void)read_cgns(dir / "missing.cgns"), IoError);
+}
+
+/// Write the zones of a split mesh as unstructured CGNS zones "Block1".. (ICEM/Pointwise
+/// style: one zone per block, nodes repeated on the interfaces): cells in a MIXED section,
+/// one face section per marker with a boundary condition "bc_<marker>" (element range) unless
+/// `bcs` is false, and the interface faces in a section "interface" if `interfaces`.
+void write_cgns_zones(const Mesh& m, const std::vector<test::Zone>& zones, const fs::path& file,
+                      bool bcs, bool interfaces) {
+    int fn = 0, B = 0, C = 0, S = 0;
+    ok(cg_open(file.string().c_str(), CG_MODE_WRITE, &fn));
+    ok(cg_base_write(fn, "Base", 3, 3, &B));
+    for (std::size_t z = 0; z < zones.size(); ++z) {
+        const test::Zone& zn = zones[z];
+        int Z = 0;
+        cgsize_t size[3] = {static_cast<cgsize_t>(zn.nodes.size()),
+                            static_cast<cgsize_t>(zn.cells.size()), 0};
+        const std::string zname = "Block" + std::to_string(z + 1);
+        ok(cg_zone_write(fn, B, zname.c_str(), size, CGNS_ENUMV(Unstructured), &Z));
+        const char* names[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
+        for (int k = 0; k < 3; ++k) {
+            std::vector<double> c;
+            for (Index g : zn.nodes) c.push_back(m.node(g)[k]);
+            ok(cg_coord_write(fn, B, Z, CGNS_ENUMV(RealDouble), names[k], c.data(), &C));
+        }
+        std::vector<cgsize_t> conn, offs{0};
+        for (Index c : zn.cells) {
+            conn.push_back(cgns_of(m.cell_type(c)));
+            std::vector<Index> local;
+            for (Index v : m.cell(c)) local.push_back(zn.local(v));
+            for (auto v : cgns_nodes(m.cell_type(c), local)) conn.push_back(v);
+            offs.push_back(static_cast<cgsize_t>(conn.size()));
+        }
+        const auto ncells = static_cast<cgsize_t>(zn.cells.size());
+        ok(cg_poly_section_write(fn, B, Z, "Cells", CGNS_ENUMV(MIXED), 1, ncells, 0, conn.data(),
+                                 offs.data(), &S));
+        cgsize_t next = ncells + 1;
+        std::map<int, std::vector<const test::ZoneFace*>> by_marker;
+        for (const auto& f : zn.faces)
+            if (f.marker >= 0 || interfaces) by_marker[f.marker].push_back(&f);
+        for (const auto& [mk, fs] : by_marker) {
+            std::vector<cgsize_t> fconn, foffs{0};
+            for (const auto* f : fs) {
+                fconn.push_back(f->type == FaceType::triangle ? CGNS_ENUMV(TRI_3)
+                                                              : CGNS_ENUMV(QUAD_4));
+                for (Index v : f->nodes) fconn.push_back(zn.local(v) + 1);
+                foffs.push_back(static_cast<cgsize_t>(fconn.size()));
+            }
+            const auto n = static_cast<cgsize_t>(fs.size());
+            const std::string sname = mk < 0 ? "interface" : m.markers()[mk];
+            ok(cg_poly_section_write(fn, B, Z, sname.c_str(), CGNS_ENUMV(MIXED), next, next + n - 1,
+                                     0, fconn.data(), foffs.data(), &S));
+            if (bcs && mk >= 0) {
+                int BC = 0;
+                const cgsize_t range[2] = {next, next + n - 1};
+                ok(cg_boco_write(fn, B, Z, ("bc_" + sname).c_str(), CGNS_ENUMV(BCWall),
+                                 CGNS_ENUMV(PointRange), 2, range, &BC));
+                ok(cg_boco_gridlocation_write(fn, B, Z, BC, CGNS_ENUMV(FaceCenter)));
+            }
+            next += n;
+        }
+    }
+    ok(cg_close(fn));
+}
+
+/// Faces per marker name.
+std::map<std::string, int> faces_per_marker(const Mesh& m) {
+    std::map<std::string, int> out;
+    for (Index f = 0; f < m.n_faces(); ++f) ++out[m.markers()[m.face_marker(f)]];
+    return out;
+}
+
+/// The box split into three unstructured zones (nodes repeated on the two interfaces) reads
+/// back to the single-zone mesh: same node, cell and face counts, markers (each boundary
+/// condition name appears in several zones and becomes one marker), closed dual cells.
+TEST(Cgns, UnstructuredZonesAreJoined) {
+    const fs::path dir = test::scratch_dir("cgns");
+    for (auto kind : {test::BoxKind::tets, test::BoxKind::hexes}) {
+        const fs::path msh = dir / "zbox.msh";
+        test::make_box(kind, 1.5, 0.5, 0.5, 0.25, {msh});
+        const Mesh ref = read_gmsh(msh);
+        const auto zones = test::split_by_x(ref, {0.45, 1.05});
+        ASSERT_EQ(zones.size(), 3U);
+        for (const auto& z : zones) ASSERT_FALSE(z.cells.empty());
+        for (bool bcs : {true, false})
+            for (bool interfaces : {true, false}) {
+                SCOPED_TRACE(::testing::Message() << "kind " << static_cast<int>(kind) << " bcs "
+                                                  << bcs << " interfaces " << interfaces);
+                const fs::path f = dir / "zones.cgns";
+                fs::remove(f);
+                write_cgns_zones(ref, zones, f, bcs, interfaces);
+                const Mesh m = read_mesh(f);
+                EXPECT_EQ(m.n_nodes(), ref.n_nodes());
+                EXPECT_EQ(m.n_cells(), ref.n_cells());
+                EXPECT_EQ(m.n_faces(), ref.n_faces());
+                std::map<std::string, int> expected;
+                for (const auto& [name, n] : faces_per_marker(ref))
+                    expected[(bcs ? "bc_" : "") + name] = n;
+                EXPECT_EQ(faces_per_marker(m), expected);
+                EXPECT_NEAR(m.volume(), ref.volume(), 1e-13);
+                test::check_dual(m, 1.5 * 0.5 * 0.5);
+            }
+    }
+}
+
+/// A structured block (boundary conditions as point lists: an IFaceCenter list for the inlet,
+/// a vertex list for the walls) next to an unstructured zone of hexahedra whose face sections
+/// name the markers; the structured walls' family and the unstructured section share the name
+/// "walls"; the unstructured interface section is dropped.
+TEST(Cgns, StructuredAndUnstructuredZonesWithPointLists) {
+    const fs::path f = test::scratch_dir("cgns") / "mixed_zones.cgns";
+    fs::remove(f);
+    int fn = 0, B = 0;
+    ok(cg_open(f.string().c_str(), CG_MODE_WRITE, &fn));
+    ok(cg_base_write(fn, "Base", 3, 3, &B));
+    const int ni = 5, nj = 4, nk = 3, ni2 = 4;
+    write_block(fn, B, "Left", 0.0, false, ni, nj, nk, {});
+    {
+        int BC = 0;
+        std::vector<cgsize_t> inlet, walls;
+        for (int k = 1; k < nk; ++k)
+            for (int j = 1; j < nj; ++j) inlet.insert(inlet.end(), {1, j, k});
+        for (int k = 1; k <= nk; ++k)
+            for (int j = 1; j <= nj; ++j)
+                for (int i = 1; i <= ni; ++i)
+                    if (j == 1 || j == nj || k == 1 || k == nk)
+                        walls.insert(walls.end(), {i, j, k});
+        ok(cg_boco_write(fn, B, 1, "inlet", CGNS_ENUMV(BCInflow), CGNS_ENUMV(PointList),
+                         static_cast<cgsize_t>(inlet.size() / 3), inlet.data(), &BC));
+        ok(cg_boco_gridlocation_write(fn, B, 1, BC, CGNS_ENUMV(IFaceCenter)));
+        ok(cg_boco_write(fn, B, 1, "wall_vertices", CGNS_ENUMV(BCWall), CGNS_ENUMV(PointList),
+                         static_cast<cgsize_t>(walls.size() / 3), walls.data(), &BC));
+        ok(cg_goto(fn, B, "Zone_t", 1, "ZoneBC_t", 1, "BC_t", BC, "end"));
+        ok(cg_famname_write("walls"));
+    }
+    {
+        int Z = 0, C = 0, S = 0;
+        cgsize_t size[3] = {ni2 * nj * nk, (ni2 - 1) * (nj - 1) * (nk - 1), 0};
+        ok(cg_zone_write(fn, B, "Right", size, CGNS_ENUMV(Unstructured), &Z));
+        std::vector<double> x, y, z;
+        for (int k = 0; k < nk; ++k)
+            for (int j = 0; j < nj; ++j)
+                for (int i = 0; i < ni2; ++i) {
+                    x.push_back(1.0 + static_cast<double>(i) / (ni2 - 1));
+                    y.push_back(static_cast<double>(j) / (nj - 1));
+                    z.push_back(static_cast<double>(k) / (nk - 1));
+                }
+        ok(cg_coord_write(fn, B, Z, CGNS_ENUMV(RealDouble), "CoordinateX", x.data(), &C));
+        ok(cg_coord_write(fn, B, Z, CGNS_ENUMV(RealDouble), "CoordinateY", y.data(), &C));
+        ok(cg_coord_write(fn, B, Z, CGNS_ENUMV(RealDouble), "CoordinateZ", z.data(), &C));
+        const auto id = [&](int i, int j, int k) { return 1 + i + ni2 * (j + nj * k); };
+        std::vector<cgsize_t> hexa;
+        for (int k = 0; k + 1 < nk; ++k)
+            for (int j = 0; j + 1 < nj; ++j)
+                for (int i = 0; i + 1 < ni2; ++i)
+                    hexa.insert(hexa.end(), {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k),
+                                             id(i, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1),
+                                             id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
+        const auto nh = static_cast<cgsize_t>(hexa.size() / 8);
+        ok(cg_section_write(fn, B, Z, "Hexa", CGNS_ENUMV(HEXA_8), 1, nh, 0, hexa.data(), &S));
+        std::map<std::string, std::vector<cgsize_t>> quads;
+        for (int k = 0; k + 1 < nk; ++k)
+            for (int j = 0; j + 1 < nj; ++j) {
+                quads["interface"].insert(
+                    quads["interface"].end(),
+                    {id(0, j, k), id(0, j, k + 1), id(0, j + 1, k + 1), id(0, j + 1, k)});
+                const int e = ni2 - 1;
+                quads["outlet"].insert(
+                    quads["outlet"].end(),
+                    {id(e, j, k), id(e, j + 1, k), id(e, j + 1, k + 1), id(e, j, k + 1)});
+            }
+        for (int i = 0; i + 1 < ni2; ++i) {
+            for (int k = 0; k + 1 < nk; ++k)
+                for (int j : {0, nj - 1})
+                    quads["walls"].insert(
+                        quads["walls"].end(),
+                        {id(i, j, k), id(i + 1, j, k), id(i + 1, j, k + 1), id(i, j, k + 1)});
+            for (int j = 0; j + 1 < nj; ++j)
+                for (int k : {0, nk - 1})
+                    quads["walls"].insert(
+                        quads["walls"].end(),
+                        {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k)});
+        }
+        cgsize_t next = nh + 1;
+        for (const auto& [name, q] : quads) {
+            const auto n = static_cast<cgsize_t>(q.size() / 4);
+            ok(cg_section_write(fn, B, Z, name.c_str(), CGNS_ENUMV(QUAD_4), next, next + n - 1, 0,
+                                q.data(), &S));
+            next += n;
+        }
+    }
+    ok(cg_close(fn));
+    const Mesh m = read_mesh(f);
+    EXPECT_EQ(m.n_nodes(), (ni + ni2 - 1) * nj * nk);
+    EXPECT_EQ(m.n_cells(), (ni + ni2 - 2) * (nj - 1) * (nk - 1));
+    const std::map<std::string, int> expected{
+        {"inlet", (nj - 1) * (nk - 1)},
+        {"outlet", (nj - 1) * (nk - 1)},
+        {"walls", 2 * (ni + ni2 - 2) * ((nj - 1) + (nk - 1))}};
+    EXPECT_EQ(faces_per_marker(m), expected);
+    test::check_dual(m, 2.0);
+}
+
+/// Point lists a structured zone cannot take give one-line errors naming zone and condition.
+TEST(Cgns, StructuredPointListErrors) {
+    const fs::path f = test::scratch_dir("cgns") / "bad_list.cgns";
+    const int ni = 4, nj = 3, nk = 3;
+    const auto write = [&](CGNS_ENUMT(GridLocation_t) loc, std::vector<cgsize_t> pts) {
+        fs::remove(f);
+        int fn = 0, B = 0, BC = 0;
+        ok(cg_open(f.string().c_str(), CG_MODE_WRITE, &fn));
+        ok(cg_base_write(fn, "Base", 3, 3, &B));
+        write_block(fn, B, "Blk", 0.0, false, ni, nj, nk, {});
+        ok(cg_boco_write(fn, B, 1, "side", CGNS_ENUMV(BCWall), CGNS_ENUMV(PointList),
+                         static_cast<cgsize_t>(pts.size() / 3), pts.data(), &BC));
+        ok(cg_boco_gridlocation_write(fn, B, 1, BC, loc));
+        ok(cg_close(fn));
+    };
+    const auto message = [&]() -> std::string {
+        try {
+            (void)read_cgns(f);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    write(CGNS_ENUMV(IFaceCenter), {2, 1, 1});
+    EXPECT_NE(message().find("zone 'Blk' boundary condition 1 'side': face 1 lies inside the zone "
+                             "(index 2 in direction 1); expected a block face (1 or 4)"),
+              std::string::npos)
+        << message();
+    write(CGNS_ENUMV(CellCenter), {1, 1, 1});
+    EXPECT_NE(message().find("'side': a point list at location CellCenter; expected Vertex"),
+              std::string::npos)
+        << message();
+    write(CGNS_ENUMV(Vertex), {1, 1, 9});
+    EXPECT_NE(message().find("'side': point 1 has index 9 in direction 3; expected 1 to 3"),
+              std::string::npos)
+        << message();
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 
 #include "gmsh_fixtures.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
 #include "manta/mesh/readers.hpp"
 #include "metrics_checks.hpp"
 
@@ -24,15 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& f) {
-    std::ifstream in(f, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 void gzip(const fs::path& from, const fs::path& to) {
-    const std::string s = slurp(from);
+    const std::string s = core::read_file(from);
     gzFile g = gzopen(to.string().c_str(), "wb");
     ASSERT_NE(g, nullptr);
     gzwrite(g, s.data(), static_cast<unsigned>(s.size()));
@@ -238,7 +232,10 @@ TEST(Readers, GmshErrorsNameFileAndLine) {
         "1 1 1 4 3\n$EndElements\n";
     ASSERT_NO_THROW((void)parse_gmsh(fmt22 + names + nodes + elems, "ok.msh"));
     expect_message([&] { (void)parse_gmsh("$MeshFormat\n4.1 1 8\n$EndMeshFormat\n", "b.msh"); },
-                   "b.msh: line 2: binary MSH; expected ASCII");
+                   "b.msh: byte 20: the binary integer 1684948260; expected 1 in either byte "
+                   "order");
+    expect_message([&] { (void)parse_gmsh("$MeshFormat\n4.1 1 6\n", "d.msh"); },
+                   "d.msh: line 2: data size 6; expected 4 or 8 (sizeof(size_t))");
     expect_message([&] { (void)parse_gmsh("$MeshFormat\n3.0 0 8\n$EndMeshFormat\n", "v.msh"); },
                    "v.msh: line 2: MSH version 3; expected 2.2 or 4.1");
     std::string bad = elems;
@@ -267,7 +264,7 @@ TEST(Readers, DamagedFilesGiveInputErrors) {
     std::mt19937 rng(11);
     int errors = 0, runs = 0;
     for (const char* name : {"d41.msh", "d22.msh", "d.su2"}) {
-        const std::string text = slurp(dir / name);
+        const std::string text = core::read_file(dir / name);
         const bool su2 = std::string(name).ends_with(".su2");
         const auto parse = [su2](const std::string& t) {
             if (su2)

@@ -54,6 +54,23 @@ struct RawMesh {
     int marker(const std::string& name);
 };
 
+/// Nodes (sorted, unique) on the exposed faces of the cells: faces (edges of 2-D cells) that
+/// belong to one cell only. Where zones or blocks meet, these are the nodes that may coincide.
+[[nodiscard]] std::vector<Index> exposed_nodes(const RawMesh& raw);
+
+/// A merge tolerance: `relative` times the diagonal of the nodes' bounding box (m).
+[[nodiscard]] double merge_tolerance(const RawMesh& raw, double relative = 1e-10);
+
+/// Merge nodes among `candidates` whose coordinates agree within `tol` in x, y and z, renumber
+/// the nodes compactly (first occurrence order) and the cells' and faces' node lists with them.
+/// Returns the number of nodes removed.
+Index merge_coincident(RawMesh& raw, std::vector<Index> candidates, double tol);
+
+/// Remove the boundary elements that are faces of two cells (zone interfaces once the zones'
+/// nodes are merged, listed by one zone or by both) and the markers left without an element.
+/// Returns the number of boundary elements removed.
+std::size_t drop_interior_faces(RawMesh& raw);
+
 /// Build the finalized 3-D mesh (2-D meshes extruded into a slab, `options`).
 [[nodiscard]] Mesh build_mesh(RawMesh raw, const ReadOptions& options);
 
@@ -74,7 +91,14 @@ public:
     /// InputError unless `n` lines can still follow ("NPOIN= 10^9" in a short file).
     void require_lines(std::int64_t n, std::string_view what) const;
     [[nodiscard]] const std::string& source() const noexcept { return source_; }
-    /// "file:line" of the current line.
+    /// Byte offset of the next unread character (binary data follows a text line there).
+    [[nodiscard]] std::size_t position() const noexcept { return pos_; }
+    /// Continue reading text at byte `pos` (after binary data read by the caller).
+    void seek(std::size_t pos) noexcept { pos_ = pos; }
+    /// Name places by the byte offset of the current line rather than its line number (line
+    /// numbers mean nothing once binary data has been passed).
+    void use_byte_offsets() noexcept { bytes_ = true; }
+    /// "file: line N" (or "file: byte N") of the current line.
     [[nodiscard]] std::string at() const;
     /// InputError "file:line: what".
     [[noreturn]] void fail(const std::string& what) const;
@@ -83,6 +107,8 @@ private:
     std::string_view text_;
     std::size_t pos_ = 0;
     std::int64_t line_ = 0;
+    std::size_t line_start_ = 0;
+    bool bytes_ = false;
     std::string source_;
 };
 
