@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "manta/aircraft/aircraft.hpp"
+#include "manta/core/memory.hpp"
 #include "manta/vlm/avl_reader.hpp"
 #include "manta/vlm/steady.hpp"
 #include "manta/vlm/unsteady.hpp"
@@ -157,3 +158,14 @@ BENCHMARK(BM_ranger_uvlm_replay_step_20_wake_rows_2_threads)
     ->MinTime(2.0);
 
 }  // namespace
+
+// The allocator settings of the `manta` program (core/memory.hpp), so the figures are those of
+// `manta vlm` and of table campaigns.
+int main(int argc, char** argv) {
+    manta::core::keep_large_allocations();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

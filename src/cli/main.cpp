@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/memory.hpp"
 #include "manta/core/version.hpp"
 
 namespace manta::cli {
@@ -36,6 +37,7 @@ void add_required_flight_condition(CLI::App* cmd, FlightCondition& c) {
 
 int main(int argc, char** argv) {
     using namespace manta;
+    core::keep_large_allocations();
     CLI::App app{
         "MANTA: aircraft manoeuvres with aerodynamics from flow solutions.\n"
         "Run 'manta <command> --help' for the options of a command.",
