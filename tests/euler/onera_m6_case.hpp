@@ -7,10 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "manta/euler/solver.hpp"
+#include "manta/mesh/dual.hpp"
 #include "manta/mesh/mesh.hpp"
+#include "manta/mesh/readers.hpp"
+#include "manta/mesh/reorder.hpp"
 
 namespace manta::test {
 
@@ -25,6 +30,29 @@ inline void onera_m6_setup(const mesh::Mesh& m, euler::CaseSetup& setup) {
         setup.roles.push_back(k);
     }
     setup.reference.moment_point = {0.25, 0.0, 0.0};
+}
+
+/// Solve the case on the mesh `file` (nodes renumbered first if `reorder`) with `scheme` and its
+/// default wall tangency, check the reference area against SU2's `su2_area` (m^2, 0.2 %) and
+/// print the coefficients after `label`.
+inline euler::SolveOutcome onera_m6_solve(const std::filesystem::path& file,
+                                          euler::FluxScheme scheme, bool reorder, double su2_area,
+                                          const char* label) {
+    const mesh::Mesh m = reorder ? mesh::reorder_reverse_cuthill_mckee(mesh::read_mesh(file)).mesh
+                                 : mesh::read_mesh(file);
+    const mesh::DualMetrics dual = mesh::compute_dual_metrics(m);
+    parallel::SerialHalo halo;
+    parallel::SerialCommunicator comm;
+    euler::CaseSetup setup;
+    onera_m6_setup(m, setup);
+    setup.spatial.flux.scheme = scheme;
+    euler::SteadySolver solver({&m, &dual, m.n_nodes(), &halo}, comm, setup);
+    // SU2's REF_AREA = 0: the z-projection of the wing.
+    EXPECT_NEAR(solver.reference_area(), su2_area, 0.002 * su2_area);
+    const euler::SolveOutcome oc = solver.solve();
+    std::printf("ONERA M6 %s: CL %.6f CD %.6f CMy %.6f in %d iterations, %.1f s\n", label,
+                oc.forces.CL, oc.forces.CD, oc.forces.CMy, oc.iterations, oc.wall_s);
+    return oc;
 }
 
 }  // namespace manta::test

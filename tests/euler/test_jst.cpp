@@ -19,6 +19,18 @@ namespace {
 using namespace manta;
 using euler::BoundaryKind;
 
+/// The JST scheme on the subsonic (M 0.5) bump channel: walls below and above.
+euler::CaseSetup jst_bump_setup(const mesh::Mesh& mesh) {
+    euler::CfdConfig c;
+    c.markers = {{"lower", BoundaryKind::wall}, {"upper", BoundaryKind::wall}};
+    euler::CaseSetup setup;
+    setup.roles = euler::resolve_roles(mesh, c);
+    setup.flow.mach = 0.5;
+    setup.reference.area = 0.1;
+    setup.spatial.flux.scheme = euler::FluxScheme::jst;
+    return setup;
+}
+
 TEST(JstConfig, KeysParseAndAreChecked) {
     const euler::CfdConfig c =
         euler::parse_cfd_config("numerics: {flux: jst, jst_k2: 0.6, jst_k4: 0.03}\n", "case.yaml");
@@ -42,13 +54,7 @@ TEST(JstSolver, SubsonicBumpChannelConvergesSixOrders) {
     const mesh::DualMetrics dual = mesh::compute_dual_metrics(mesh);
     const parallel::SerialHalo halo;
     parallel::SerialCommunicator comm;
-    euler::CfdConfig c;
-    c.markers = {{"lower", BoundaryKind::wall}, {"upper", BoundaryKind::wall}};
-    euler::CaseSetup setup;
-    setup.roles = euler::resolve_roles(mesh, c);
-    setup.flow.mach = 0.5;
-    setup.reference.area = 0.1;
-    setup.spatial.flux.scheme = euler::FluxScheme::jst;
+    euler::CaseSetup setup = jst_bump_setup(mesh);
     euler::SteadySolver s({&mesh, &dual, mesh.n_nodes(), &halo}, comm, setup);
     const euler::SolveOutcome oc = s.solve();
     std::printf("JST bump channel: %d iterations, %.2f orders, CL %.6f CD %.6f\n", oc.iterations,
@@ -83,13 +89,7 @@ double wall_normal_velocity(euler::WallTangency wall, int& iterations) {
     const mesh::DualMetrics dual = mesh::compute_dual_metrics(mesh);
     const parallel::SerialHalo halo;
     parallel::SerialCommunicator comm;
-    euler::CfdConfig c;
-    c.markers = {{"lower", BoundaryKind::wall}, {"upper", BoundaryKind::wall}};
-    euler::CaseSetup setup;
-    setup.roles = euler::resolve_roles(mesh, c);
-    setup.flow.mach = 0.5;
-    setup.reference.area = 0.1;
-    setup.spatial.flux.scheme = euler::FluxScheme::jst;
+    euler::CaseSetup setup = jst_bump_setup(mesh);
     setup.spatial.wall = wall;
     euler::SteadySolver s({&mesh, &dual, mesh.n_nodes(), &halo}, comm, setup);
     const euler::SolveOutcome oc = s.solve();

@@ -22,19 +22,8 @@ using namespace manta;
 /// Solve the fine case with `scheme` (its default wall tangency).
 euler::SolveOutcome solve_fine(const std::filesystem::path& file, euler::FluxScheme scheme,
                                const char* label) {
-    const mesh::Mesh m = mesh::reorder_reverse_cuthill_mckee(mesh::read_mesh(file)).mesh;
-    const mesh::DualMetrics dual = mesh::compute_dual_metrics(m);
-    parallel::SerialHalo halo;
-    parallel::SerialCommunicator comm;
-    euler::CaseSetup setup;
-    test::onera_m6_setup(m, setup);
-    setup.spatial.flux.scheme = scheme;
-    euler::SteadySolver solver({&m, &dual, m.n_nodes(), &halo}, comm, setup);
-    EXPECT_NEAR(solver.reference_area(), 0.757168, 0.002 * 0.757168);
-    const euler::SolveOutcome oc = solver.solve();
-    std::printf("ONERA M6 fine, %s: CL %.6f CD %.6f CMy %.6f in %d iterations, %.1f s\n", label,
-                oc.forces.CL, oc.forces.CD, oc.forces.CMy, oc.iterations, oc.wall_s);
-    return oc;
+    return test::onera_m6_solve(file, scheme, true, 0.757168,
+                                (std::string("fine, ") + label).c_str());
 }
 
 const std::filesystem::path fine_mesh =

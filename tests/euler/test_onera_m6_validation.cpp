@@ -24,22 +24,10 @@ using namespace manta;
 const std::filesystem::path file = std::filesystem::path(MANTA_SHARED_DIR) /
                                    "reference/onera_m6/mesh_ONERAM6_inv_gmsh_coarse.su2.gz";
 
-/// Solve the coarse case with `scheme` (its default wall tangency) and print the coefficients.
+/// Solve the coarse case with `scheme` (its default wall tangency).
 euler::SolveOutcome solve_coarse(euler::FluxScheme scheme, const char* label) {
-    const mesh::Mesh m = mesh::read_mesh(file);
-    const mesh::DualMetrics dual = mesh::compute_dual_metrics(m);
-    parallel::SerialHalo halo;
-    parallel::SerialCommunicator comm;
-    euler::CaseSetup setup;
-    test::onera_m6_setup(m, setup);
-    setup.spatial.flux.scheme = scheme;
-    euler::SteadySolver solver({&m, &dual, m.n_nodes(), &halo}, comm, setup);
-    // SU2's REF_AREA = 0: the z-projection of the wing.
-    EXPECT_NEAR(solver.reference_area(), 0.749716, 0.002 * 0.749716);
-    const euler::SolveOutcome oc = solver.solve();
-    std::printf("ONERA M6 coarse, %s: CL %.6f CD %.6f CMy %.6f in %d iterations, %.1f s\n", label,
-                oc.forces.CL, oc.forces.CD, oc.forces.CMy, oc.iterations, oc.wall_s);
-    return oc;
+    return test::onera_m6_solve(file, scheme, false, 0.749716,
+                                (std::string("coarse, ") + label).c_str());
 }
 
 // The criterion, with SU2's scheme: JST (k2 0.5, k4 0.02) and strong wall tangency, as

@@ -16,6 +16,7 @@
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
 #include "manta/flightdyn/eom.hpp"
+#include "random_states.hpp"
 #include "test_sim_models.hpp"
 
 namespace fd = manta::flightdyn;
@@ -53,36 +54,12 @@ fd::FlightModel with_beta_dot(fd::FlightModel m) {
     return m;
 }
 
-struct Case {
-    fd::EulerState<double> state;
-    fd::Controls<double> controls;
-};
+using Case = manta::test::RandomCase;
+using manta::test::max_rel;
 
 /// States over the tables (and a little beyond them), all attitudes and headings.
 std::vector<Case> random_cases(int n, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
-    std::vector<Case> out(static_cast<std::size_t>(n));
-    for (auto& c : out) {
-        c.state << in(-1e4, 1e4), in(-1e4, 1e4), -in(200, 12000), in(-3.0, 3.0), in(-1.4, 1.4),
-            in(-7.0, 7.0), in(60, 240), deg(in(-10, 24)), deg(in(-12, 12)), in(-1.0, 1.0),
-            in(-0.5, 0.5), in(-0.5, 0.5);
-        c.controls.elevator = deg(in(-25, 15));
-        c.controls.aileron = deg(in(-25, 15));
-        c.controls.rudder = deg(in(-17, 17));
-        c.controls.throttle = in(0.0, 1.0);
-    }
-    return out;
-}
-
-/// Largest |a - b| relative to 1 + |b| over the entries.
-template <class A, class B>
-double max_rel(const A& a, const B& b) {
-    double worst = 0.0;
-    for (Eigen::Index i = 0; i < a.size(); ++i)
-        worst = std::max(worst, std::abs(a[i] - b[i]) / (1.0 + std::abs(b[i])));
-    return worst;
+    return manta::test::random_cases(n, seed, {60, 240, -10, 24, 12});
 }
 
 Eigen::Matrix<double, 6, 1> coefficients(const fd::Loads<double>& L) {

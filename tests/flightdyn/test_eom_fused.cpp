@@ -17,6 +17,7 @@
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/eom.hpp"
+#include "random_states.hpp"
 #include "test_sim_models.hpp"
 
 namespace fd = manta::flightdyn;
@@ -77,36 +78,12 @@ std::vector<fd::FlightModel> models() {
     return out;
 }
 
-struct Case {
-    fd::EulerState<double> state;
-    fd::Controls<double> controls;
-};
+using Case = manta::test::RandomCase;
+using manta::test::max_rel;
 
 /// States mostly inside the tables, some beyond them; all attitudes and headings.
 std::vector<Case> random_cases(int n, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
-    std::vector<Case> out(static_cast<std::size_t>(n));
-    for (auto& c : out) {
-        c.state << in(-1e4, 1e4), in(-1e4, 1e4), -in(200, 12000), in(-3.0, 3.0), in(-1.4, 1.4),
-            in(-7.0, 7.0), in(60, 230), deg(in(-8, 22)), deg(in(-11, 11)), in(-1.0, 1.0),
-            in(-0.5, 0.5), in(-0.5, 0.5);
-        c.controls.elevator = deg(in(-25, 15));
-        c.controls.aileron = deg(in(-25, 15));
-        c.controls.rudder = deg(in(-17, 17));
-        c.controls.throttle = in(0.0, 1.0);
-    }
-    return out;
-}
-
-/// Largest |a - b| relative to 1 + |b|.
-template <class A, class B>
-double max_rel(const A& a, const B& b) {
-    double worst = 0.0;
-    for (Eigen::Index i = 0; i < a.size(); ++i)
-        worst = std::max(worst, std::abs(a[i] - b[i]) / (1.0 + std::abs(b[i])));
-    return worst;
+    return manta::test::random_cases(n, seed, {60, 230, -8, 22, 11});
 }
 
 std::vector<FastKernelSet> kernel_sets() {
