@@ -58,6 +58,21 @@ struct EulerLift {
     std::string reason;
 };
 
+/// The wing case at M `mach`, incidence 0: roles from the marker names, the half wing's area,
+/// moments about the quarter chord.
+euler::CaseSetup wing_setup(const mesh::Mesh& m) {
+    euler::CaseSetup setup;
+    setup.flow.mach = mach;
+    for (const std::string& name : m.markers()) {
+        euler::BoundaryKind k{};
+        EXPECT_TRUE(euler::default_role(name, k)) << name;
+        setup.roles.push_back(k);
+    }
+    setup.reference.area = 3.0;  // half wing: chord 1 m x semi-span 3 m
+    setup.reference.moment_point = {0.25, 0.0, 0.0};
+    return setup;
+}
+
 const EulerLift& euler_lift() {
     static const EulerLift r = [] {
         EulerLift out;
@@ -65,15 +80,7 @@ const EulerLift& euler_lift() {
         const mesh::DualMetrics dual = mesh::compute_dual_metrics(m);
         parallel::SerialHalo halo;
         parallel::SerialCommunicator comm;
-        euler::CaseSetup setup;
-        setup.flow.mach = mach;
-        for (const std::string& name : m.markers()) {
-            euler::BoundaryKind k{};
-            EXPECT_TRUE(euler::default_role(name, k)) << name;
-            setup.roles.push_back(k);
-        }
-        setup.reference.area = 3.0;  // half wing: chord 1 m x semi-span 3 m
-        setup.reference.moment_point = {0.25, 0.0, 0.0};
+        euler::CaseSetup setup = wing_setup(m);
         // Default solver settings: at this Mach number the residual cycles about 2 orders down
         // at CFL 1e4 (the first-order implicit operator does not steer the second-order
         // residual there); the solver lowers its CFL cap ten-fold after 20 iterations without a
@@ -133,16 +140,8 @@ TEST(WingValidation, LowMachFixHalvesTheSpuriousDrag) {
     const mesh::DualMetrics dual = mesh::compute_dual_metrics(m);
     parallel::SerialHalo halo;
     parallel::SerialCommunicator comm;
-    euler::CaseSetup setup;
-    setup.flow.mach = mach;
+    euler::CaseSetup setup = wing_setup(m);
     setup.flow.alpha = alpha_deg * std::numbers::pi / 180.0;
-    for (const std::string& name : m.markers()) {
-        euler::BoundaryKind k{};
-        EXPECT_TRUE(euler::default_role(name, k)) << name;
-        setup.roles.push_back(k);
-    }
-    setup.reference.area = 3.0;
-    setup.reference.moment_point = {0.25, 0.0, 0.0};
     setup.spatial.flux.low_mach_fix = true;
     setup.solver.max_iterations = 300;
     euler::SteadySolver solver({&m, &dual, m.n_nodes(), &halo}, comm, setup);

@@ -6,13 +6,46 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
+#include <utility>
 #include <vector>
 
+#include "manta/aero/database.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/eom.hpp"
+#include "manta/flightdyn/model.hpp"
 
 namespace manta::test {
+
+/// The Ranger-like model with beta-dot columns added to its dynamic table (CY, Cl, Cn), so
+/// both angle rates enter the solve; the CG moved off the moment reference point and the thrust
+/// line tilted and offset, so every term of the loads is exercised.
+inline flightdyn::FlightModel with_beta_dot(flightdyn::FlightModel m) {
+    std::vector<aero::Table> tables = m.aero->tables();
+    for (auto& t : tables) {
+        if (t.kind != aero::TableKind::dynamic) continue;
+        const std::size_t nc = t.columns.size(), np = t.n_points();
+        std::vector<double> values;
+        for (std::size_t p = 0; p < np; ++p) {
+            for (std::size_t c = 0; c < nc; ++c) values.push_back(t.values[p * nc + c]);
+            values.push_back(0.3 + 0.01 * static_cast<double>(p % 5));     // CY_betadot
+            values.push_back(-0.05 + 0.002 * static_cast<double>(p % 3));  // Cl_betadot
+            values.push_back(0.08 - 0.003 * static_cast<double>(p % 7));   // Cn_betadot
+        }
+        t.columns.insert(t.columns.end(), {"CY_betadot", "Cl_betadot", "Cn_betadot"});
+        t.values = std::move(values);
+    }
+    m.aero = std::make_shared<const aero::AeroDatabase>(m.aero->info(), m.aero->force_axes(),
+                                                        m.aero->extrapolation(), std::move(tables));
+    m.name += ", beta-dot columns";
+    m.mass.cg_geom = Eigen::Vector3d(0.12, 0.01, -0.05);
+    m.engine.thrust_angle = core::deg(2.5);
+    m.engine.has_position = true;
+    m.engine.position = {1.0, 0.0, -0.3};
+    flightdyn::finalize(m);
+    return m;
+}
 
 /// One state with its controls.
 struct RandomCase {

@@ -25,35 +25,6 @@ using manta::core::Dual;
 
 namespace {
 
-/// The Ranger-like model with beta-dot columns added to its dynamic table (CY, Cl, Cn), so
-/// both angle rates enter the solve; the CG moved off the moment reference point and the thrust
-/// line tilted and offset, so every term of the loads is exercised.
-fd::FlightModel with_beta_dot(fd::FlightModel m) {
-    std::vector<manta::aero::Table> tables = m.aero->tables();
-    for (auto& t : tables) {
-        if (t.kind != manta::aero::TableKind::dynamic) continue;
-        const std::size_t nc = t.columns.size(), np = t.n_points();
-        std::vector<double> values;
-        for (std::size_t p = 0; p < np; ++p) {
-            for (std::size_t c = 0; c < nc; ++c) values.push_back(t.values[p * nc + c]);
-            values.push_back(0.3 + 0.01 * static_cast<double>(p % 5));     // CY_betadot
-            values.push_back(-0.05 + 0.002 * static_cast<double>(p % 3));  // Cl_betadot
-            values.push_back(0.08 - 0.003 * static_cast<double>(p % 7));   // Cn_betadot
-        }
-        t.columns.insert(t.columns.end(), {"CY_betadot", "Cl_betadot", "Cn_betadot"});
-        t.values = std::move(values);
-    }
-    m.aero = std::make_shared<const manta::aero::AeroDatabase>(
-        m.aero->info(), m.aero->force_axes(), m.aero->extrapolation(), std::move(tables));
-    m.name += ", beta-dot columns";
-    m.mass.cg_geom = Eigen::Vector3d(0.12, 0.01, -0.05);
-    m.engine.thrust_angle = deg(2.5);
-    m.engine.has_position = true;
-    m.engine.position = {1.0, 0.0, -0.3};
-    fd::finalize(m);
-    return m;
-}
-
 using Case = manta::test::RandomCase;
 using manta::test::max_rel;
 
@@ -80,7 +51,7 @@ Eigen::Matrix<double, N, 1> values(const Eigen::Matrix<Dual, N, 1>& x) {
 // beta-dot columns, multilinear and C1.
 TEST(SinglePassAngleRates, LoadsMatchTheThreePassSolve) {
     const fd::FlightModel ranger = manta::test::ranger_like();
-    const fd::FlightModel both = with_beta_dot(ranger);
+    const fd::FlightModel both = manta::test::with_beta_dot(ranger);
     fd::FlightModel both_c1 = both;
     both_c1.name += ", C1";
     both_c1.interpolation = manta::aero::Interpolation::c1;
@@ -120,7 +91,7 @@ TEST(SinglePassAngleRates, LoadsMatchTheThreePassSolve) {
 // With both angle rates, the loads euler_rhs returns are the tables at the alpha-dot and beta-dot
 // it returns (fixed point of the implicit equations).
 TEST(SinglePassAngleRates, BetaDotSolveIsAFixedPoint) {
-    const fd::FlightModel m = with_beta_dot(manta::test::ranger_like());
+    const fd::FlightModel m = manta::test::with_beta_dot(manta::test::ranger_like());
     for (const Case& c : random_cases(50, 5)) {
         fd::Loads<double> L;
         const auto d = fd::euler_rhs(m, c.state, c.controls, &L);
@@ -154,7 +125,7 @@ TEST(SinglePassAngleRates, DoubleRhsMatchesTheAutomaticDifferentiationPath) {
     rigid.engine.static_thrust_sl = 14000.0;
     rigid.engine.thrust_angle = deg(2.0);
     const fd::FlightModel ranger = manta::test::ranger_like();
-    const fd::FlightModel both = with_beta_dot(ranger);
+    const fd::FlightModel both = manta::test::with_beta_dot(ranger);
     // Constants with a short derivative vector (length 1 trips a GCC -Warray-bounds false
     // positive inside Eigen).
     auto constant = [](double v) { return manta::core::make_constant(v, 2); };

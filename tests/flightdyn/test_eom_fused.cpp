@@ -26,30 +26,11 @@ using manta::core::deg;
 
 namespace {
 
-/// The Ranger-like model with beta-dot columns (CY, Cl, Cn) in its dynamic table, the CG off the
-/// moment reference point and an offset, tilted thrust line: every term of the loads in play.
+/// manta::test::with_beta_dot's model with an engine's angular momentum as well: every term of
+/// the loads in play.
 fd::FlightModel every_term(fd::FlightModel m) {
-    std::vector<manta::aero::Table> tables = m.aero->tables();
-    for (auto& t : tables) {
-        if (t.kind != manta::aero::TableKind::dynamic) continue;
-        const std::size_t nc = t.columns.size(), np = t.n_points();
-        std::vector<double> values;
-        for (std::size_t p = 0; p < np; ++p) {
-            for (std::size_t c = 0; c < nc; ++c) values.push_back(t.values[p * nc + c]);
-            values.push_back(0.3 + 0.01 * static_cast<double>(p % 5));
-            values.push_back(-0.05 + 0.002 * static_cast<double>(p % 3));
-            values.push_back(0.08 - 0.003 * static_cast<double>(p % 7));
-        }
-        t.columns.insert(t.columns.end(), {"CY_betadot", "Cl_betadot", "Cn_betadot"});
-        t.values = std::move(values);
-    }
-    m.aero = std::make_shared<const manta::aero::AeroDatabase>(
-        m.aero->info(), m.aero->force_axes(), m.aero->extrapolation(), std::move(tables));
-    m.name += ", beta-dot columns, offsets";
-    m.mass.cg_geom = Eigen::Vector3d(0.12, 0.01, -0.05);
-    m.engine.thrust_angle = deg(2.5);
-    m.engine.has_position = true;
-    m.engine.position = {1.0, 0.0, -0.3};
+    m = manta::test::with_beta_dot(std::move(m));
+    m.name += ", offsets";
     m.engine_angular_momentum = Eigen::Vector3d(30.0, 0.0, 0.0);
     fd::finalize(m);
     return m;
