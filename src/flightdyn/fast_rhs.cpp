@@ -12,6 +12,9 @@
 
 #include <Eigen/LU>
 
+#include <fmt/format.h>
+
+#include "manta/core/error.hpp"
 #include "manta/core/fastmath.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
 #include "manta/flightdyn/eom.hpp"
@@ -24,6 +27,7 @@ namespace fm = ::manta::core;
 constexpr int vector_width = 2;
 constexpr const char* kernel_set_name = "baseline";
 #include "fast_rhs_impl.inc"
+const RhsKernels table = {&euler_kernel, &quaternion_kernel, nullptr, kernel_set_name};
 }  // namespace
 }  // namespace base
 
@@ -176,4 +180,70 @@ bool fast_quaternion_rhs(const FlightModel& m, const QuatState<double>& s,
     return true;
 }
 
+void batched_euler_rhs(const FlightModel& m, const EulerState<double>* s, const Controls<double>* u,
+                       EulerState<double>* d, std::size_t n, FastKernelSet which,
+                       std::size_t& next) {
+    next = 0;
+    const RhsKernels* k = kernels_of(which);
+    if (k == nullptr || k->euler4 == nullptr || n < 4) return;
+    RhsParams p;
+    Eigen::Matrix3d inverse;
+    if (!make_params(m, p, inverse)) return;
+    std::size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        double uu[16];
+        for (int l = 0; l < 4; ++l) {
+            const Controls<double>& c = u[i + static_cast<std::size_t>(l)];
+            uu[4 * l] = c.elevator;
+            uu[4 * l + 1] = c.aileron;
+            uu[4 * l + 2] = c.rudder;
+            uu[4 * l + 3] = c.throttle;
+        }
+        const unsigned done = k->euler4(p, s[i].data(), uu, d[i].data());
+        for (unsigned l = 0; l < 4; ++l) {
+            const std::size_t j = i + l;
+            if ((done >> l & 1u) != 0) {
+                if (m.aero) m.aero->count_evaluation();
+            } else {
+                d[j] = euler_rhs(m, s[j], u[j]);
+            }
+        }
+    }
+    next = i;
+}
+
 }  // namespace manta::flightdyn::detail
+
+namespace manta::flightdyn {
+
+namespace {
+
+void check_batch_sizes(const char* what, std::size_t ns, std::size_t nu, std::size_t nd) {
+    if (ns != nu || ns != nd)
+        throw InputError(
+            fmt::format("{}: {} states, {} controls and {} outputs; expected the same "
+                        "number of each",
+                        what, ns, nu, nd));
+}
+
+}  // namespace
+
+void euler_rhs_batch(const FlightModel& m, std::span<const EulerState<double>> s,
+                     std::span<const Controls<double>> u, std::span<EulerState<double>> d) {
+    check_batch_sizes("euler_rhs_batch", s.size(), u.size(), d.size());
+    static_assert(sizeof(EulerState<double>) == euler::size * sizeof(double),
+                  "consecutive Euler states are consecutive records of 12 doubles");
+    const std::size_t n = s.size();
+    std::size_t i = 0;
+    detail::batched_euler_rhs(m, s.data(), u.data(), d.data(), n, detail::FastKernelSet::automatic,
+                              i);
+    for (; i < n; ++i) d[i] = euler_rhs(m, s[i], u[i]);
+}
+
+void quaternion_rhs_batch(const FlightModel& m, std::span<const QuatState<double>> s,
+                          std::span<const Controls<double>> u, std::span<QuatState<double>> d) {
+    check_batch_sizes("quaternion_rhs_batch", s.size(), u.size(), d.size());
+    for (std::size_t i = 0; i < s.size(); ++i) d[i] = quaternion_rhs(m, s[i], u[i]);
+}
+
+}  // namespace manta::flightdyn

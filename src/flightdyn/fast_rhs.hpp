@@ -56,6 +56,10 @@ struct RhsKernels {
     bool (*euler)(const RhsParams& p, const double* s, const double* u, double* d);
     /// s: the 13 quaternion states; d: the 13 rates.
     bool (*quaternion)(const RhsParams& p, const double* s, const double* u, double* d);
+    /// Four Euler states at once (s, u, d: four consecutive records of 12, 4 and 12 doubles);
+    /// returns the bit set of the lanes written, the others being left to `euler`. nullptr in a
+    /// set without a batched kernel.
+    unsigned (*euler4)(const RhsParams& p, const double* s, const double* u, double* d);
     const char* name;
 };
 

@@ -13,6 +13,8 @@
 #include <cstddef>
 #include <cstring>
 
+#include <immintrin.h>
+
 #define manta manta_flightdyn_avx2
 #include "manta/core/fastmath.hpp"
 #undef manta
@@ -24,6 +26,9 @@ namespace fm = ::manta_flightdyn_avx2::core;
 constexpr int vector_width = 4;
 constexpr const char* kernel_set_name = "avx2";
 #include "fast_rhs_impl.inc"
+// The batched kernel uses the table code above.
+#include "fast_rhs_batch_impl.inc"
+const RhsKernels table = {&euler_kernel, &quaternion_kernel, &euler_kernel4, kernel_set_name};
 }  // namespace
 
 const RhsKernels* rhs_kernels_if_built() {

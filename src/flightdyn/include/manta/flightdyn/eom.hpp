@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>  // Matrix3d::inverse()
 #include <cmath>
+#include <span>
 #include <type_traits>
 
 #include "manta/aero/database.hpp"
@@ -394,6 +395,13 @@ enum class FastKernelSet {
 [[nodiscard]] bool fast_quaternion_rhs(const FlightModel& m, const QuatState<double>& s,
                                        const Controls<double>& u, QuatState<double>& d,
                                        FastKernelSet which = FastKernelSet::automatic);
+/// The batched kernel of `which` (AVX2: four states per pass) over s[0, n), u, d: on return
+/// d[0, next) is written, next a multiple of four (0 where the set has no batched kernel, the
+/// model is not covered by the fused path, or n < 4); lanes the pass refuses are computed by
+/// euler_rhs. euler_rhs_batch is the public entry.
+void batched_euler_rhs(const FlightModel& m, const EulerState<double>* s, const Controls<double>* u,
+                       EulerState<double>* d, std::size_t n, FastKernelSet which,
+                       std::size_t& next);
 /// True when this build has the AVX2 kernels and the processor runs them.
 [[nodiscard]] bool has_avx2_rhs_kernels();
 /// Name of the kernel set the automatic choice uses ("avx2", "baseline" or "reference").
@@ -550,6 +558,19 @@ template <class T>
     }
     return detail::quaternion_rhs_reference(m, s, u, loads_out);
 }
+
+/// Time derivatives of many Euler states at once: d[i] equals euler_rhs(m, s[i], u[i]) to
+/// rounding (1e-13 relative to 1 + |value|) for every i. Where the processor has AVX2 with FMA,
+/// each group of four states takes one pass four lanes wide (atmosphere, thrust, trigonometry,
+/// the implicit angle-rate solve, accelerations and kinematics; the table look-ups per state);
+/// the rest, and any state the pass does not cover (see detail::fast_euler_rhs), go through
+/// euler_rhs one by one. The three spans must have the same length (InputError otherwise); `d`
+/// may not overlap `s`.
+void euler_rhs_batch(const FlightModel& m, std::span<const EulerState<double>> s,
+                     std::span<const Controls<double>> u, std::span<EulerState<double>> d);
+/// The same for the quaternion form (d[i] equals quaternion_rhs(m, s[i], u[i]) to rounding).
+void quaternion_rhs_batch(const FlightModel& m, std::span<const QuatState<double>> s,
+                          std::span<const Controls<double>> u, std::span<QuatState<double>> d);
 
 /// Quaternion (q0, q1, q2, q3) of 3-2-1 Euler angles (body-to-earth rotation).
 [[nodiscard]] Eigen::Vector4d quaternion_from_euler(double phi, double theta, double psi);
