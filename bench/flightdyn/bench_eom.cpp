@@ -6,8 +6,10 @@
 //   build/bench/flightdyn/bench_flightdyn_eom --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true
 //
-// Figures to read: items_per_second of BM_euler_rhs (derivative evaluations per second; the
-// project target is >= 1e7 on one core) and sim_s_per_wall_s of BM_simulate_rk4_100Hz.
+// Figures to read: items_per_second of BM_euler_rhs (derivative evaluations per second, one
+// state per call), of BM_euler_rhs_batch and BM_quaternion_rhs_batch (the same, batched: four
+// states per AVX2 pass; the project target is >= 1e7 on one core) and sim_s_per_wall_s of
+// BM_simulate_rk4_100Hz.
 // BM_euler_rhs takes the fused kernels of the processor (AVX2 where it has it;
 // MANTA_FLIGHTDYN_KERNELS=baseline or =reference chooses the baseline set or the templates);
 // the *_kernels and *_templates variants fix the path.
@@ -159,6 +161,30 @@ void BM_euler_rhs_batch(benchmark::State& state) {
     state.SetLabel(std::string("kernels: ") + fd::detail::fast_rhs_kernel_name());
 }
 BENCHMARK(BM_euler_rhs_batch)->Arg(4)->Arg(64);
+
+/// quaternion_rhs_batch, as BM_euler_rhs_batch.
+void BM_quaternion_rhs_batch(benchmark::State& state) {
+    const fd::FlightModel& m = ranger();
+    const auto xs = samples();
+    const auto batch = static_cast<std::size_t>(state.range(0));
+    std::vector<fd::QuatState<double>> s;
+    std::vector<fd::Controls<double>> u;
+    for (const auto& x : xs) {
+        s.push_back(fd::to_quaternion_state(x.state));
+        u.push_back(x.controls);
+    }
+    std::vector<fd::QuatState<double>> d(batch);
+    std::size_t i = 0;
+    for (auto _ : state) {
+        fd::quaternion_rhs_batch(m, std::span(s).subspan(i, batch), std::span(u).subspan(i, batch),
+                                 d);
+        benchmark::DoNotOptimize(d.data());
+        benchmark::ClobberMemory();
+        i = (i + batch) & (n_states - 1);
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(batch));
+}
+BENCHMARK(BM_quaternion_rhs_batch)->Arg(4)->Arg(64);
 
 void BM_quaternion_rhs(benchmark::State& state) {
     const fd::FlightModel& m = ranger();

@@ -27,7 +27,7 @@ namespace fm = ::manta::core;
 constexpr int vector_width = 2;
 constexpr const char* kernel_set_name = "baseline";
 #include "fast_rhs_impl.inc"
-const RhsKernels table = {&euler_kernel, &quaternion_kernel, nullptr, kernel_set_name};
+const RhsKernels table = {&euler_kernel, &quaternion_kernel, nullptr, nullptr, kernel_set_name};
 }  // namespace
 }  // namespace base
 
@@ -180,12 +180,16 @@ bool fast_quaternion_rhs(const FlightModel& m, const QuatState<double>& s,
     return true;
 }
 
-void batched_euler_rhs(const FlightModel& m, const EulerState<double>* s, const Controls<double>* u,
-                       EulerState<double>* d, std::size_t n, FastKernelSet which,
-                       std::size_t& next) {
+namespace {
+
+/// The four-lane loop of batched_euler_rhs and batched_quaternion_rhs: `State` the state
+/// vector, `kernel4` the member of RhsKernels, `one` the single-state right-hand side.
+template <class State, class Kernel4, class One>
+void batched_rhs(const FlightModel& m, const State* s, const Controls<double>* u, State* d,
+                 std::size_t n, FastKernelSet which, std::size_t& next, Kernel4 kernel4, One one) {
     next = 0;
     const RhsKernels* k = kernels_of(which);
-    if (k == nullptr || k->euler4 == nullptr || n < 4) return;
+    if (k == nullptr || k->*kernel4 == nullptr || n < 4) return;
     RhsParams p;
     Eigen::Matrix3d inverse;
     if (!make_params(m, p, inverse)) return;
@@ -199,17 +203,41 @@ void batched_euler_rhs(const FlightModel& m, const EulerState<double>* s, const 
             uu[4 * l + 2] = c.rudder;
             uu[4 * l + 3] = c.throttle;
         }
-        const unsigned done = k->euler4(p, s[i].data(), uu, d[i].data());
+        const unsigned done = (k->*kernel4)(p, s[i].data(), uu, d[i].data());
         for (unsigned l = 0; l < 4; ++l) {
             const std::size_t j = i + l;
             if ((done >> l & 1u) != 0) {
                 if (m.aero) m.aero->count_evaluation();
             } else {
-                d[j] = euler_rhs(m, s[j], u[j]);
+                d[j] = one(m, s[j], u[j]);
             }
         }
     }
     next = i;
+}
+
+}  // namespace
+
+void batched_euler_rhs(const FlightModel& m, const EulerState<double>* s, const Controls<double>* u,
+                       EulerState<double>* d, std::size_t n, FastKernelSet which,
+                       std::size_t& next) {
+    static_assert(sizeof(EulerState<double>) == euler::size * sizeof(double),
+                  "consecutive Euler states are consecutive records of 12 doubles");
+    batched_rhs(m, s, u, d, n, which, next, &RhsKernels::euler4,
+                [](const FlightModel& mm, const EulerState<double>& x, const Controls<double>& c) {
+                    return euler_rhs(mm, x, c);
+                });
+}
+
+void batched_quaternion_rhs(const FlightModel& m, const QuatState<double>* s,
+                            const Controls<double>* u, QuatState<double>* d, std::size_t n,
+                            FastKernelSet which, std::size_t& next) {
+    static_assert(sizeof(QuatState<double>) == quat::size * sizeof(double),
+                  "consecutive quaternion states are consecutive records of 13 doubles");
+    batched_rhs(m, s, u, d, n, which, next, &RhsKernels::quaternion4,
+                [](const FlightModel& mm, const QuatState<double>& x, const Controls<double>& c) {
+                    return quaternion_rhs(mm, x, c);
+                });
 }
 
 }  // namespace manta::flightdyn::detail
@@ -231,8 +259,6 @@ void check_batch_sizes(const char* what, std::size_t ns, std::size_t nu, std::si
 void euler_rhs_batch(const FlightModel& m, std::span<const EulerState<double>> s,
                      std::span<const Controls<double>> u, std::span<EulerState<double>> d) {
     check_batch_sizes("euler_rhs_batch", s.size(), u.size(), d.size());
-    static_assert(sizeof(EulerState<double>) == euler::size * sizeof(double),
-                  "consecutive Euler states are consecutive records of 12 doubles");
     const std::size_t n = s.size();
     std::size_t i = 0;
     detail::batched_euler_rhs(m, s.data(), u.data(), d.data(), n, detail::FastKernelSet::automatic,
@@ -243,7 +269,11 @@ void euler_rhs_batch(const FlightModel& m, std::span<const EulerState<double>> s
 void quaternion_rhs_batch(const FlightModel& m, std::span<const QuatState<double>> s,
                           std::span<const Controls<double>> u, std::span<QuatState<double>> d) {
     check_batch_sizes("quaternion_rhs_batch", s.size(), u.size(), d.size());
-    for (std::size_t i = 0; i < s.size(); ++i) d[i] = quaternion_rhs(m, s[i], u[i]);
+    const std::size_t n = s.size();
+    std::size_t i = 0;
+    detail::batched_quaternion_rhs(m, s.data(), u.data(), d.data(), n,
+                                   detail::FastKernelSet::automatic, i);
+    for (; i < n; ++i) d[i] = quaternion_rhs(m, s[i], u[i]);
 }
 
 }  // namespace manta::flightdyn

@@ -60,6 +60,8 @@ struct RhsKernels {
     /// returns the bit set of the lanes written, the others being left to `euler`. nullptr in a
     /// set without a batched kernel.
     unsigned (*euler4)(const RhsParams& p, const double* s, const double* u, double* d);
+    /// The same for four quaternion states (records of 13, 4 and 13 doubles).
+    unsigned (*quaternion4)(const RhsParams& p, const double* s, const double* u, double* d);
     const char* name;
 };
 

@@ -28,7 +28,8 @@ constexpr const char* kernel_set_name = "avx2";
 #include "fast_rhs_impl.inc"
 // The batched kernel uses the table code above.
 #include "fast_rhs_batch_impl.inc"
-const RhsKernels table = {&euler_kernel, &quaternion_kernel, &euler_kernel4, kernel_set_name};
+const RhsKernels table = {&euler_kernel, &quaternion_kernel, &euler_kernel4, &quaternion_kernel4,
+                          kernel_set_name};
 }  // namespace
 
 const RhsKernels* rhs_kernels_if_built() {

@@ -1,6 +1,6 @@
-// The batched Euler-form right-hand side (euler_rhs_batch; the four-lane AVX2 kernel of
-// src/flightdyn/fast_rhs_batch_impl.inc) against the reference templates, the lanes it hands
-// back to the scalar path, and its evaluation count.
+// The batched right-hand sides (euler_rhs_batch, quaternion_rhs_batch; the four-lane AVX2
+// kernels of src/flightdyn/fast_rhs_batch_impl.inc) against the reference templates, the lanes
+// they hand back to the scalar path, and the evaluation count.
 
 #include <gtest/gtest.h>
 
@@ -59,13 +59,20 @@ Batch batch_of(const std::vector<RandomCase>& cases) {
     return b;
 }
 
-/// Largest relative difference of the batch result from the reference templates, state by state.
+/// Largest relative difference of the batch results (both state forms) from the reference
+/// templates, state by state.
 double worst_against_reference(const fd::FlightModel& m, const Batch& b) {
     std::vector<fd::EulerState<double>> d(b.s.size());
     fd::euler_rhs_batch(m, b.s, b.u, d);
     double worst = 0.0;
     for (std::size_t i = 0; i < b.s.size(); ++i)
         worst = std::max(worst, max_rel(d[i], fd::detail::euler_rhs_reference(m, b.s[i], b.u[i])));
+    std::vector<fd::QuatState<double>> q, dq(b.s.size());
+    for (const auto& x : b.s) q.push_back(fd::to_quaternion_state(x));
+    fd::quaternion_rhs_batch(m, q, b.u, dq);
+    for (std::size_t i = 0; i < q.size(); ++i)
+        worst =
+            std::max(worst, max_rel(dq[i], fd::detail::quaternion_rhs_reference(m, q[i], b.u[i])));
     return worst;
 }
 
@@ -135,7 +142,35 @@ TEST(BatchedRhs, RefusedLanesTakeTheScalarPathAndAreCounted) {
         fd::detail::batched_euler_rhs(m, b.s.data(), b.u.data(), d.data(), b.s.size(),
                                       fd::detail::FastKernelSet::avx2, next);
         EXPECT_EQ(next, 16u);
+        std::vector<fd::QuatState<double>> q, dq(b.s.size());
+        for (const auto& x : b.s) q.push_back(fd::to_quaternion_state(x));
+        fd::detail::batched_quaternion_rhs(m, q.data(), b.u.data(), dq.data(), q.size(),
+                                           fd::detail::FastKernelSet::avx2, next);
+        EXPECT_EQ(next, 16u);
+        for (std::size_t i = 0; i < q.size(); ++i) {
+            const fd::QuatState<double> one = fd::quaternion_rhs(m, q[i], b.u[i]);
+            if (one.allFinite()) {
+                EXPECT_LT(max_rel(dq[i], one), 1e-13) << i;
+            }
+        }
     }
+}
+
+// Quaternion states with the air angles in every quadrant (alpha to +-180 deg, sideslip to
+// +-89 deg, through the vector atan2's octants), on a model without aero tables (no grid to
+// leave) and on the Ranger-like model (where most are beyond its tables and go the scalar way).
+TEST(BatchedRhs, QuaternionAirAnglesInEveryQuadrant) {
+    auto rigid = manta::test::rigid_body(5000.0, 8000.0, 25000.0, 30000.0, 1000.0);
+    rigid.engine.static_thrust_sl = 14000.0;
+    std::vector<RandomCase> cases = manta::test::random_cases(400, 31, {30, 230, -8, 22, 11});
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const double a = -179.0 + 358.0 * static_cast<double>(i) / 399.0;
+        cases[i].state[fd::euler::alpha] = deg(a);
+        cases[i].state[fd::euler::beta] = deg(89.0 * std::sin(0.37 * static_cast<double>(i)));
+    }
+    const Batch b = batch_of(cases);
+    EXPECT_LT(worst_against_reference(rigid, b), 1e-13);
+    EXPECT_LT(worst_against_reference(manta::test::ranger_like(), b), 1e-13);
 }
 
 // Spans of different lengths are refused in one line naming the counts.

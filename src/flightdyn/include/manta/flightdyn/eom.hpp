@@ -402,6 +402,10 @@ enum class FastKernelSet {
 void batched_euler_rhs(const FlightModel& m, const EulerState<double>* s, const Controls<double>* u,
                        EulerState<double>* d, std::size_t n, FastKernelSet which,
                        std::size_t& next);
+/// The same for quaternion states (quaternion_rhs_batch is the public entry).
+void batched_quaternion_rhs(const FlightModel& m, const QuatState<double>* s,
+                            const Controls<double>* u, QuatState<double>* d, std::size_t n,
+                            FastKernelSet which, std::size_t& next);
 /// True when this build has the AVX2 kernels and the processor runs them.
 [[nodiscard]] bool has_avx2_rhs_kernels();
 /// Name of the kernel set the automatic choice uses ("avx2", "baseline" or "reference").
@@ -562,13 +566,16 @@ template <class T>
 /// Time derivatives of many Euler states at once: d[i] equals euler_rhs(m, s[i], u[i]) to
 /// rounding (1e-13 relative to 1 + |value|) for every i. Where the processor has AVX2 with FMA,
 /// each group of four states takes one pass four lanes wide (atmosphere, thrust, trigonometry,
-/// the implicit angle-rate solve, accelerations and kinematics; the table look-ups per state);
+/// the table cells and weights, the implicit angle-rate solve, accelerations and kinematics; the
+/// tables' corner rows per state);
 /// the rest, and any state the pass does not cover (see detail::fast_euler_rhs), go through
 /// euler_rhs one by one. The three spans must have the same length (InputError otherwise); `d`
 /// may not overlap `s`.
 void euler_rhs_batch(const FlightModel& m, std::span<const EulerState<double>> s,
                      std::span<const Controls<double>> u, std::span<EulerState<double>> d);
-/// The same for the quaternion form (d[i] equals quaternion_rhs(m, s[i], u[i]) to rounding).
+/// The same for the quaternion form (d[i] equals quaternion_rhs(m, s[i], u[i]) to rounding); the
+/// four-lane pass takes the air angles from a vector atan2 and their sines and cosines from the
+/// velocity components.
 void quaternion_rhs_batch(const FlightModel& m, std::span<const QuatState<double>> s,
                           std::span<const Controls<double>> u, std::span<QuatState<double>> d);
 
