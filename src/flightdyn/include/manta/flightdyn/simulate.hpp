@@ -15,11 +15,17 @@
 ///   the atmosphere model; `SimulationResult::end_reason` says which. NaN/Inf in the state raise
 ///   NumericalError naming the time and the last finite state (the partial result goes to
 ///   `SimulationOptions::on_abort` first, so nothing computed is lost).
+/// - Ensembles (`simulate_ensemble`): many cases of one model; with RK4 they advance in lock-step
+///   and each stage evaluates all cases' derivatives in one batched call (`euler_rhs_batch`,
+///   `quaternion_rhs_batch`). Each case's result equals `simulate`'s for that case to rounding; a
+///   case that ends (ground, atmosphere, NaN) drops out and the others go on; a NaN is recorded
+///   in that case's result (`EndReason::numerical_error`) instead of thrown.
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -130,12 +136,16 @@ struct SaturationReport {
     [[nodiscard]] std::string summary(const ControlLimits& limits) const;
 };
 
-/// Where a simulation is, for progress displays.
+/// Where a simulation is, for progress displays. For an ensemble `t` and `duration` are summed
+/// over the cases (case-seconds; a case that ended early counts as done in full), so
+/// `fraction()` is the share of the whole ensemble's work done.
 struct SimulationProgress {
-    double t = 0.0;               ///< simulated time reached [s]
-    double duration = 0.0;        ///< requested duration [s]
+    double t = 0.0;               ///< simulated time reached [s] (ensemble: case-seconds done)
+    double duration = 0.0;        ///< requested duration [s] (ensemble: cases x duration)
     double wall_elapsed = 0.0;    ///< wall time so far [s]
     double wall_remaining = 0.0;  ///< estimate of the wall time left [s]
+    std::size_t n_cases = 1;      ///< cases in the run (1 for `simulate`)
+    std::size_t cases_ended = 0;  ///< cases that have ended
     /// t / duration.
     [[nodiscard]] double fraction() const { return duration > 0 ? t / duration : 1.0; }
 };
@@ -161,8 +171,9 @@ struct SimulationOptions {
     /// Called with progress at most every `progress_interval` wall seconds (and once at the end).
     std::function<void(const SimulationProgress&)> progress;
     double progress_interval = 0.5;  ///< [s of wall time]
-    /// Called with the partial result (rows up to the last finite state) before NumericalError
-    /// is thrown, so the caller can save it.
+    /// Called by `simulate` with the partial result (rows up to the last finite state, end
+    /// reason `numerical_error`) before NumericalError is thrown, so the caller can save it.
+    /// `simulate_ensemble` does not call it: the partial result is in its returned vector.
     std::function<void(const SimulationResult&)> on_abort;
     std::string aircraft_name;  ///< for the trajectory metadata ("" = the model's name)
     std::string mass_case;      ///< for the trajectory metadata ("" = the model's mass case)
@@ -176,8 +187,11 @@ enum class EndReason {
     completed,        ///< reached the requested duration
     ground,           ///< altitude fell to the ground altitude
     left_atmosphere,  ///< altitude left the atmosphere model's range
+    /// the state became NaN/Inf or the integrator failed; `end_message` holds the NumericalError
+    /// text. `simulate` throws that error (after `on_abort`); `simulate_ensemble` records it.
+    numerical_error,
 };
-/// "completed", "ground", "left_atmosphere".
+/// "completed", "ground", "left_atmosphere", "numerical_error".
 [[nodiscard]] std::string_view to_string(EndReason v);
 
 /// A simulated trajectory and its book-keeping.
@@ -189,10 +203,12 @@ struct SimulationResult {
     Controls<double> final_controls;        ///< applied (saturated) controls at final_time
     double final_time = 0.0;                ///< [s]
     EndReason end_reason = EndReason::completed;  ///< why the run ended
-    std::string end_message;              ///< one line, e.g. "reached the ground at t = 12.3 s"
-    std::int64_t steps = 0;               ///< accepted integration steps
-    std::int64_t rhs_evaluations = 0;     ///< right-hand-side evaluations
-    double wall_seconds = 0.0;            ///< wall time of the integration
+    std::string end_message;           ///< one line, e.g. "reached the ground at t = 12.3 s"
+    std::int64_t steps = 0;            ///< accepted integration steps
+    std::int64_t rhs_evaluations = 0;  ///< right-hand-side evaluations
+    /// Wall time of the integration [s]; for a lock-step ensemble case, of the whole ensemble
+    /// from its start to this case's end (the cases share it).
+    double wall_seconds = 0.0;
     SaturationReport saturation;          ///< saturated controls
     aero::OutOfRangeReport out_of_range;  ///< table queries out of range (empty without aero)
 };
@@ -209,6 +225,35 @@ struct SimulationResult {
 [[nodiscard]] SimulationResult simulate(const FlightModel& model, const EulerState<double>& initial,
                                         const InputHistory& inputs,
                                         const SimulationOptions& options);
+
+/// One case of an ensemble.
+struct EnsembleCase {
+    std::string name;            ///< label for messages (e.g. "V150_h3000")
+    EulerState<double> initial;  ///< initial state, Euler form (converted to options.form)
+    InputHistory inputs;         ///< control commands (saturated at the model's limits)
+};
+
+/// Simulate every case of `cases` with one model and one set of options; result i belongs to
+/// case i and equals `simulate(model, cases[i].initial, cases[i].inputs, options)` to rounding
+/// (the batched right-hand side differs from the one-state one by rounding only), with two
+/// differences: a NaN/Inf ends that case with `EndReason::numerical_error` and the error text in
+/// `end_message` (rows up to the last finite state) instead of throwing, and `wall_seconds` is
+/// the ensemble's (see SimulationResult).
+/// - rk4: the cases advance in lock-step on the same time and output grid; each RK4 stage
+///   evaluates the derivatives of every running case in one `euler_rhs_batch` or
+///   `quaternion_rhs_batch` call (a lone running case, and a case whose last evaluation left the
+///   aero tables, take the one-state right-hand side); a case that ends drops out, the others go
+///   on.
+/// - dopri5: adaptive steps differ per case, so the cases run one after another with `simulate`.
+/// Out-of-table counts are per case: with more than one case the aero database's counters are
+/// used as scratch (reset around each batched stage and attributed to the cases; a stage with an
+/// out-of-table query is re-evaluated one case at a time to attribute it) and hold no total
+/// afterwards. `options.progress` sees the whole ensemble (SimulationProgress). InputError, naming
+/// the case, for bad options or initial states, before anything runs. An empty `cases` gives an
+/// empty vector.
+[[nodiscard]] std::vector<SimulationResult> simulate_ensemble(const FlightModel& model,
+                                                              std::span<const EnsembleCase> cases,
+                                                              const SimulationOptions& options);
 
 /// Write a result as trajectory CSV ('#' metadata lines, header, rows), atomically.
 void write_trajectory(const std::filesystem::path& file, const SimulationResult& result);
