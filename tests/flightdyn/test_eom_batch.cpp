@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "eom_models.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/units.hpp"
@@ -24,26 +25,6 @@ using manta::test::max_rel;
 using manta::test::RandomCase;
 
 namespace {
-
-std::vector<fd::FlightModel> models() {
-    std::vector<fd::FlightModel> out;
-    auto rigid = manta::test::rigid_body(5000.0, 8000.0, 25000.0, 30000.0, 1000.0);
-    rigid.engine.static_thrust_sl = 14000.0;
-    rigid.name = "rigid body";
-    out.push_back(rigid);
-    out.push_back(manta::test::ranger_like());
-    out.back().name = "Ranger-like";
-    out.push_back(manta::test::with_beta_dot(manta::test::ranger_like()));
-    const std::filesystem::path file =
-        std::filesystem::path(MANTA_SOURCE_DIR) / "examples" / "ranger2000" / "aircraft.yaml";
-    if (std::filesystem::exists(file)) {
-        fd::FlightModel m = manta::aircraft::load_aircraft(file).flight_model();
-        fd::finalize(m);
-        m.name = "Ranger 2000 (examples)";
-        out.push_back(std::move(m));
-    }
-    return out;
-}
 
 struct Batch {
     std::vector<fd::EulerState<double>> s;
@@ -78,12 +59,12 @@ double worst_against_reference(const fd::FlightModel& m, const Batch& b) {
 
 }  // namespace
 
-// Every model, states over all attitudes, headings up to 7 rad, altitudes 200 m to 12 km (two
-// atmosphere layers), some beyond the tables; 401 states, so the last one is not in a group of
-// four. Agreement to rounding with the templates.
+// Every comparison model (eom_models.hpp), states over all attitudes, headings up to 7 rad,
+// altitudes 200 m to 12 km (two atmosphere layers), some beyond the tables; 401 states, so the last
+// one is not in a group of four. Agreement to rounding with the templates.
 TEST(BatchedRhs, MatchesTheReferenceTemplates) {
     const Batch b = batch_of(manta::test::random_cases(401, 8, {60, 230, -8, 22, 11}));
-    for (const fd::FlightModel& m : models()) {
+    for (const fd::FlightModel& m : manta::test::eom_comparison_models()) {
         SCOPED_TRACE(m.name);
         EXPECT_LT(worst_against_reference(m, b), 1e-13);
     }

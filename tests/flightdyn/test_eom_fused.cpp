@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "eom_models.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/eom.hpp"
@@ -25,39 +26,6 @@ using fd::detail::FastKernelSet;
 using manta::core::deg;
 
 namespace {
-
-/// manta::test::with_beta_dot's model with an engine's angular momentum as well: every term of
-/// the loads in play.
-fd::FlightModel every_term(fd::FlightModel m) {
-    m = manta::test::with_beta_dot(std::move(m));
-    m.name += ", offsets";
-    m.engine_angular_momentum = Eigen::Vector3d(30.0, 0.0, 0.0);
-    fd::finalize(m);
-    return m;
-}
-
-/// The models of the comparison: no aero, the Ranger-like derivative tables, every term, and the
-/// Ranger of examples/ (the benchmark's model) when the file is there.
-std::vector<fd::FlightModel> models() {
-    std::vector<fd::FlightModel> out;
-    auto rigid = manta::test::rigid_body(5000.0, 8000.0, 25000.0, 30000.0, 1000.0);
-    rigid.engine.static_thrust_sl = 14000.0;
-    rigid.engine.thrust_angle = deg(2.0);
-    rigid.name = "rigid body";
-    out.push_back(rigid);
-    out.push_back(manta::test::ranger_like());
-    out.back().name = "Ranger-like";
-    out.push_back(every_term(manta::test::ranger_like()));
-    const std::filesystem::path file =
-        std::filesystem::path(MANTA_SOURCE_DIR) / "examples" / "ranger2000" / "aircraft.yaml";
-    if (std::filesystem::exists(file)) {
-        fd::FlightModel m = manta::aircraft::load_aircraft(file).flight_model();
-        fd::finalize(m);
-        m.name = "Ranger 2000 (examples)";
-        out.push_back(std::move(m));
-    }
-    return out;
-}
 
 using Case = manta::test::RandomCase;
 using manta::test::max_rel;
@@ -84,7 +52,7 @@ const char* name_of(FastKernelSet k) {
 // fused path takes most states (the rest are out-of-table queries).
 TEST(FusedRhs, MatchesTheReferenceTemplates) {
     const auto cases = random_cases(400, 21);
-    for (const fd::FlightModel& m : models()) {
+    for (const fd::FlightModel& m : manta::test::eom_comparison_models()) {
         for (const FastKernelSet k : kernel_sets()) {
             SCOPED_TRACE(m.name + ", " + name_of(k));
             double worst_e = 0.0, worst_q = 0.0;
