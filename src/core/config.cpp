@@ -5,12 +5,15 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <unordered_map>
 
 #include "manta/core/error.hpp"
+#include "manta/core/utf8.hpp"
 
 namespace manta::core {
 
@@ -49,31 +52,115 @@ bool looks_like_number_with_unit(const std::string& s) {
     return i < s.size() && std::isalpha(static_cast<unsigned char>(s[i]));
 }
 
-// yaml-cpp keeps both entries of a repeated mapping key and look-ups see only the first, so a
-// repeated key would silently lose a value: reject it once, when the document is parsed.
-void reject_duplicate_keys(const YAML::Node& n, const std::string& source,
-                           const std::string& path) {
-    if (n.IsMap()) {
-        std::vector<std::pair<std::string, int>> seen;
-        for (const auto& kv : n) {
-            const std::string key = kv.first.Scalar();
-            const int line = mark_line(kv.first);
-            for (const auto& [k, first_line] : seen) {
-                if (k == key) {
-                    throw ConfigError(fmt::format(
-                        "{}:{}: key '{}' appears twice in one mapping (first at line {}); "
-                        "expected each key once",
-                        source, line, join_path(path, key), first_line));
-                }
-            }
-            seen.emplace_back(key, line);
-            reject_duplicate_keys(kv.second, source, join_path(path, key));
+// One pass over a parsed document, before any reader sees it:
+//  - a repeated mapping key is refused (yaml-cpp keeps both entries and look-ups see only the
+//    first, so a repeated key would silently lose a value);
+//  - a key that is a mapping or a list is refused (readers look keys up by their text);
+//  - every key and text value must be UTF-8 (JSON output is UTF-8; RFC 8259, section 8.1);
+//  - aliases are walked once: yaml-cpp gives an alias the very node of its anchor, so a node met
+//    again is skipped, and the pass costs time in proportion to the nodes written, not to the
+//    nodes the aliases expand to ("billion laughs": ten levels of ten aliases name 10^10 nodes
+//    from 100 written). A document whose aliases expand it beyond `max_expanded_nodes` (and ten
+//    times its written size) is refused, since a reader that walks it would see every copy.
+constexpr std::uint64_t max_expanded_nodes = 1'000'000;
+
+class DocumentCheck {
+public:
+    DocumentCheck(std::string_view text, const std::string& source)
+        : text_(text), source_(source) {}
+
+    void run(const YAML::Node& root) {
+        const std::uint64_t expanded = walk(root, "");
+        if (expanded > max_expanded_nodes && expanded > 10 * distinct_) {
+            throw ConfigError(fmt::format(
+                "{}: aliases ('*name') expand the document to {} nodes from {} written; expected "
+                "at most {} nodes after alias expansion (nested aliases of aliases, a "
+                "'billion laughs' document?)",
+                source_,
+                expanded >= saturated ? std::string("more than 10^18")
+                                      : fmt::format("{}", expanded),
+                distinct_, max_expanded_nodes));
         }
-    } else if (n.IsSequence()) {
-        for (std::size_t i = 0; i < n.size(); ++i)
-            reject_duplicate_keys(n[i], source, fmt::format("{}[{}]", path, i));
+        // Bytes outside every value (comments) must be UTF-8 too: YAML streams are Unicode
+        // (YAML 1.2, section 5.2).
+        const std::size_t bad = utf8_invalid_offset(text_);
+        if (bad != std::string_view::npos) {
+            throw ConfigError(
+                fmt::format("{}:{}: text is not valid UTF-8 ({} of the file); "
+                            "expected UTF-8 text (save the file as UTF-8)",
+                            source_, line_of_offset(text_, bad), describe_utf8_error(text_, bad)));
+        }
     }
-}
+
+private:
+    static constexpr std::uint64_t saturated = 1'000'000'000'000'000'000ULL;
+
+    void check_text(const YAML::Node& n, const std::string& path, const char* what) const {
+        const std::string& s = n.Scalar();
+        const std::size_t bad = utf8_invalid_offset(s);
+        if (bad == std::string::npos) return;
+        // The file offset of the bad byte, when it is in the file as written (a quoted escape
+        // such as "\uD800" makes invalid UTF-8 from valid text).
+        std::string file_offset;
+        const std::size_t raw = utf8_invalid_offset(text_);
+        const int line = mark_line(n);
+        if (raw != std::string_view::npos && static_cast<int>(line_of_offset(text_, raw)) == line)
+            file_offset = fmt::format(", byte offset {} of the file", raw);
+        throw ConfigError(fmt::format(
+            "{}:{}: key '{}': {} '{}' is not valid UTF-8 (byte 0x{:02X} at byte offset {} of "
+            "the {}{}); expected UTF-8 text (save the file as UTF-8)",
+            source_, line, utf8_escaped(path), what, utf8_escaped(s),
+            static_cast<unsigned>(static_cast<unsigned char>(s[bad])), bad, what, file_offset));
+    }
+
+    // Expanded size of `n` (saturating), checking each distinct node once.
+    std::uint64_t walk(const YAML::Node& n, const std::string& path) {
+        if (n.IsScalar()) {
+            check_text(n, path, "value");
+            return 1;
+        }
+        if (!n.IsMap() && !n.IsSequence()) return 1;
+        auto& bucket = seen_[n.Mark().pos];
+        for (const auto& [node, size] : bucket)
+            if (node.is(n)) return size;
+        ++distinct_;
+        std::uint64_t size = 1;
+        const auto add = [&size](std::uint64_t k) { size = std::min(saturated, size + k); };
+        if (n.IsMap()) {
+            std::unordered_map<std::string, int> keys;
+            for (const auto& kv : n) {
+                const int line = mark_line(kv.first);
+                if (kv.first.IsMap() || kv.first.IsSequence()) {
+                    throw ConfigError(fmt::format(
+                        "{}:{}: key '{}' has a {} as a key; expected text keys ('key: value')",
+                        source_, line, path.empty() ? "<top level>" : utf8_escaped(path),
+                        kv.first.IsMap() ? "mapping" : "list"));
+                }
+                const std::string key = kv.first.Scalar();
+                if (kv.first.IsScalar()) check_text(kv.first, join_path(path, key), "key");
+                const auto [it, fresh] = keys.emplace(key, line);
+                if (!fresh) {
+                    throw ConfigError(
+                        fmt::format("{}:{}: key '{}' appears twice in one mapping (first at line "
+                                    "{}); expected each key once",
+                                    source_, line, join_path(path, key), it->second));
+                }
+                add(1);
+                add(walk(kv.second, join_path(path, key)));
+            }
+        } else {
+            for (std::size_t i = 0; i < n.size(); ++i)
+                add(walk(n[i], fmt::format("{}[{}]", path, i)));
+        }
+        seen_[n.Mark().pos].emplace_back(n, size);
+        return size;
+    }
+
+    std::string_view text_;
+    const std::string& source_;
+    std::unordered_map<int, std::vector<std::pair<YAML::Node, std::uint64_t>>> seen_;
+    std::uint64_t distinct_ = 0;
+};
 
 // Unit suffixes users put on keys; MANTA reads SI (and _deg for angles) only.
 constexpr std::array<std::string_view, 14> foreign_unit_suffixes = {
@@ -131,7 +218,7 @@ ConfigNode ConfigNode::parse_string(std::string_view text, std::string source) {
         throw ConfigError(
             fmt::format("{}:{}: YAML syntax error: {}", impl->source, e.mark.line + 1, e.msg));
     }
-    reject_duplicate_keys(impl->node, impl->source, "");
+    DocumentCheck(text, impl->source).run(impl->node);
     impl->line = impl->node.IsDefined() && !impl->node.IsNull() ? mark_line(impl->node) : 1;
     return ConfigNode(std::move(impl));
 }
