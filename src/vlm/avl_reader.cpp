@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -93,33 +94,87 @@ std::vector<std::string> words(std::string_view s) {
     return out;
 }
 
-/// A finite number in Fortran-friendly notation ("+1", "1.", ".5", "1.0E-3", "1.0D-3").
-std::optional<double> to_number(std::string s) {
+/// How a word reads as a number.
+enum class Word {
+    number,      ///< a finite number
+    text,        ///< not a number at all (a name, a remark)
+    non_finite,  ///< NaN, infinity or beyond the range of a double ("nan", "-inf", "1e999")
+};
+
+/// Read a word in Fortran-friendly notation ("+1", "1.", ".5", "1.0E-3", "1.0D-3").
+Word read_word(std::string s, double& v) {
     if (!s.empty() && s.front() == '+') s.erase(0, 1);
     for (char& c : s)
         if (c == 'd' || c == 'D') c = 'e';
-    double v = 0.0;
+    v = 0.0;
+    if (s.empty()) return Word::text;
     const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
-        return std::nullopt;
+    if (r.ptr != s.data() + s.size()) return Word::text;
+    if (r.ec == std::errc::result_out_of_range) return Word::non_finite;
+    if (r.ec != std::errc()) return Word::text;
+    return std::isfinite(v) ? Word::number : Word::non_finite;
+}
+
+/// A finite number, or nothing for any other word.
+std::optional<double> to_number(const std::string& s) {
+    double v = 0.0;
+    if (read_word(s, v) != Word::number) return std::nullopt;
     return v;
 }
 
+bool is_non_finite(const std::string& s) {
+    double v = 0.0;
+    return read_word(s, v) == Word::non_finite;
+}
+
 /// The leading numbers of `ws` from index `first` (at most `max`); `stop` receives the first word
-/// that is not a number (empty if none).
+/// that is not a number (empty if none). A word that spells a non-finite number (NaN, infinity,
+/// overflow) also stops the list; `non_finite` (if given) receives it, and stays empty otherwise.
 std::vector<double> leading_numbers(const std::vector<std::string>& ws, std::size_t first,
-                                    std::size_t max, std::string* stop = nullptr) {
+                                    std::size_t max, std::string* stop = nullptr,
+                                    std::string* non_finite = nullptr) {
     std::vector<double> v;
+    if (non_finite) non_finite->clear();
     for (std::size_t i = first; i < ws.size() && v.size() < max; ++i) {
-        const auto x = to_number(ws[i]);
-        if (!x) {
+        double x = 0.0;
+        const Word k = read_word(ws[i], x);
+        if (k != Word::number) {
             if (stop) *stop = ws[i];
+            if (non_finite && k == Word::non_finite) *non_finite = ws[i];
             return v;
         }
-        v.push_back(*x);
+        v.push_back(x);
     }
     if (stop) stop->clear();
     return v;
+}
+
+/// The message of a non-finite word.
+std::string non_finite_message(const std::string& word, std::string_view expected) {
+    return fmt::format(
+        "'{}' is not a finite number (NaN, infinity or beyond the range of a double); expected {}",
+        word, expected);
+}
+
+/// Plausible magnitudes of the file's values (lengths in the file's own unit). They leave room
+/// for any aircraft in millimetres and reject what no geometry means (ANGLE -1e308).
+constexpr double max_length = 1e6;        ///< coordinates, chords, offsets, reference lengths
+constexpr double max_area = 1e12;         ///< Sref
+constexpr double max_angle_deg = 180.0;   ///< ANGLE, Ainc
+constexpr double max_factor = 1e3;        ///< CONTROL gain and SgnDup, DESIGN weight
+constexpr double max_scale = 1e6;         ///< SCALE factors
+constexpr double max_coefficient = 10.0;  ///< CDp, CLAF, CDCL values
+constexpr int max_chordwise = 1000;       ///< Nchord
+constexpr int max_spanwise = 10000;       ///< Nspan (surface or section), Nbody
+
+/// Every word of a coordinate file that spells a non-finite number: InputError naming the file and
+/// its line (AFILE and BFILE files are checked before they are read as coordinates).
+void check_coordinates_finite(std::string_view text, const std::string& path) {
+    for (const Line& l : significant_lines(text))
+        for (const std::string& w : words(l.text))
+            if (is_non_finite(w))
+                throw InputError(fmt::format("{}:{}: {}", path, l.number,
+                                             non_finite_message(w, "coordinate pairs 'x y'")));
 }
 
 // ------------------------------------------------------------------------------ coordinates
@@ -361,7 +416,7 @@ private:
                                 std::size_t first = 0) const {
         const auto ws = words(line.text);
         std::string stop;
-        auto v = leading_numbers(ws, first, max, &stop);
+        auto v = leading(line, keyword, ws, first, max, fields, &stop);
         if (v.size() < min) {
             const std::string what = min == 1 ? "1 number" : fmt::format("{} numbers", min);
             if (!stop.empty())
@@ -372,6 +427,49 @@ private:
                 fmt::format("expected {} ({}), got {} in '{}'", what, fields, v.size(), line.text));
         }
         return v;
+    }
+
+    /// leading_numbers of the words `ws` of `line`, an error if one of them spells a non-finite
+    /// number (`fields`: what the line holds, for the message).
+    std::vector<double> leading(const Line& line, std::string_view keyword,
+                                const std::vector<std::string>& ws, std::size_t first,
+                                std::size_t max, std::string_view fields,
+                                std::string* stop = nullptr) const {
+        std::string bad;
+        auto v = leading_numbers(ws, first, max, stop, &bad);
+        if (!bad.empty()) fail(line.number, keyword, non_finite_message(bad, fields));
+        return v;
+    }
+
+    /// `v` (a field of `line`) within [lo, hi]; `unit` for the message ("" for none).
+    double within(double v, double lo, double hi, const Line& line, std::string_view keyword,
+                  std::string_view field, std::string_view what, std::string_view unit = "") const {
+        if (!(v >= lo && v <= hi)) {
+            const std::string u = unit.empty() ? std::string() : fmt::format(" {}", unit);
+            fail(line.number, keyword,
+                 fmt::format("{} = {:g}{}; expected {} in [{:g}, {:g}]{}", field, v, u, what, lo,
+                             hi, u));
+        }
+        return v;
+    }
+    /// A length of the file within +-max_length.
+    double length(double v, const Line& line, std::string_view keyword,
+                  std::string_view field) const {
+        return within(v, -max_length, max_length, line, keyword, field, "a length");
+    }
+    /// An angle [deg] within +-max_angle_deg.
+    double angle_deg(double v, const Line& line, std::string_view keyword,
+                     std::string_view field) const {
+        return within(v, -max_angle_deg, max_angle_deg, line, keyword, field, "an angle", "deg");
+    }
+    /// A vortex count in [lo, hi].
+    int count(double v, int lo, int hi, const Line& line, std::string_view keyword,
+              std::string_view field, std::string_view what) const {
+        const int n = integer(v, line, keyword, field);
+        if (n < lo || n > hi)
+            fail(line.number, keyword,
+                 fmt::format("{} = {}; expected {} in [{}, {}]", field, n, what, lo, hi));
+        return n;
     }
 
     int integer(double v, const Line& line, std::string_view keyword,
@@ -393,7 +491,7 @@ private:
     std::optional<std::pair<double, double>> x_range(const Line& line, std::string_view keyword,
                                                      const std::vector<std::string>& ws,
                                                      std::size_t first) const {
-        const auto v = leading_numbers(ws, first, 2);
+        const auto v = leading(line, keyword, ws, first, 2, "an x/c range 'X1 X2'");
         if (v.empty()) return std::nullopt;
         if (v.size() < 2)
             fail(line.number, keyword,
@@ -450,10 +548,13 @@ private:
         const auto sign = [](int i) { return i > 0 ? 1 : (i < 0 ? -1 : 0); };
         model_.y_symmetry = sign(integer(s[0], sym, "header", "IYsym"));
         model_.z_symmetry = sign(integer(s[1], sym, "header", "IZsym"));
-        model_.z_symmetry_plane = s[2];
+        model_.z_symmetry_plane = length(s[2], sym, "header", "Zsym");
 
         const Line& ref = data_line(sym, "header", "a line with Sref Cref Bref");
         const auto r = numbers(ref, "header", 3, 3, "Sref Cref Bref");
+        within(r[0], -max_area, max_area, ref, "header", "Sref", "an area");
+        length(r[1], ref, "header", "Cref");
+        length(r[2], ref, "header", "Bref");
         const auto positive = [&](double v, std::string_view field) {
             if (v > 0.0) return v;
             warn(ref.number, "header",
@@ -466,13 +567,20 @@ private:
 
         const Line& point = data_line(ref, "header", "a line with Xref Yref Zref");
         const auto p = numbers(point, "header", 3, 3, "Xref Yref Zref");
-        model_.reference.point = Eigen::Vector3d(p[0], p[1], p[2]);
+        model_.reference.point = Eigen::Vector3d(length(p[0], point, "header", "Xref"),
+                                                 length(p[1], point, "header", "Yref"),
+                                                 length(p[2], point, "header", "Zref"));
 
-        // Optional CDp: a line that starts with a number (a keyword line does not).
+        // Optional CDp: a line that starts with a number (a keyword line does not; nor does
+        // "nan", which is an error here rather than an unknown keyword).
         if (pos_ < lines_.size()) {
             const auto ws = words(lines_[pos_].text);
-            if (to_number(ws.front()))
-                model_.profile_drag = numbers(lines_[pos_++], "header", 1, 1, "CDp")[0];
+            if (to_number(ws.front()) || is_non_finite(ws.front())) {
+                const Line& cdp = lines_[pos_++];
+                model_.profile_drag =
+                    within(numbers(cdp, "header", 1, 1, "CDp")[0], -max_coefficient,
+                           max_coefficient, cdp, "header", "CDp", "a drag coefficient");
+            }
         }
     }
 
@@ -504,7 +612,7 @@ private:
             case Key::yduplicate: {
                 in_surface_or_body(line, name);
                 const Line& d = data_line(line, name, "a line with Ydupl");
-                const double y = numbers(d, name, 1, 1, "Ydupl")[0];
+                const double y = length(numbers(d, name, 1, 1, "Ydupl")[0], d, name, "Ydupl");
                 if (model_.y_symmetry != 0)
                     warn(line.number, name,
                          "given although the header sets IYsym != 0: the mirror copy coincides "
@@ -519,6 +627,10 @@ private:
                 in_surface_or_body(line, name);
                 const Line& d = data_line(line, name, "a line with Xscale Yscale Zscale");
                 const auto v = numbers(d, name, 3, 3, "Xscale Yscale Zscale");
+                for (int i = 0; i < 3; ++i)
+                    within(v[static_cast<std::size_t>(i)], -max_scale, max_scale, d, name,
+                           std::array{"Xscale", "Yscale", "Zscale"}[static_cast<std::size_t>(i)],
+                           "a scale factor");
                 if (!(v[0] > 0.0))
                     fail(d.number, name,
                          fmt::format("Xscale = {:g}; expected a positive factor (it scales the "
@@ -531,6 +643,9 @@ private:
                 in_surface_or_body(line, name);
                 const Line& d = data_line(line, name, "a line with dX dY dZ");
                 const auto v = numbers(d, name, 3, 3, "dX dY dZ");
+                length(v[0], d, name, "dX");
+                length(v[1], d, name, "dY");
+                length(v[2], d, name, "dZ");
                 (surface_ ? surface_->translate : body_->translate) =
                     Eigen::Vector3d(v[0], v[1], v[2]);
                 return;
@@ -538,7 +653,8 @@ private:
             case Key::angle: {
                 in_surface_or_body(line, name);
                 const Line& d = data_line(line, name, "a line with dAinc");
-                const double a = numbers(d, name, 1, 1, "dAinc [deg]")[0];
+                const double a =
+                    angle_deg(numbers(d, name, 1, 1, "dAinc [deg]")[0], d, name, "dAinc");
                 if (surface_)
                     surface_->angle = a * deg;
                 else
@@ -568,7 +684,8 @@ private:
             case Key::claf: {
                 auto& sec = in_section(line, name);
                 const Line& d = data_line(line, name, "a line with CLaf");
-                const double f = numbers(d, name, 1, 1, "CLaf")[0];
+                const double f = within(numbers(d, name, 1, 1, "CLaf")[0], -max_coefficient,
+                                        max_coefficient, d, name, "CLaf", "a lift-slope factor");
                 if (f > 0.0 && f < 2.0) {
                     sec.lift_slope_factor = f;
                 } else {
@@ -581,7 +698,11 @@ private:
             case Key::cdcl: {
                 (void)in_section(line, name);
                 const Line& d = data_line(line, name, "a line with CL1 CD1 CL2 CD2 CL3 CD3");
-                (void)numbers(d, name, 6, 6, "CL1 CD1 CL2 CD2 CL3 CD3");
+                const auto v = numbers(d, name, 6, 6, "CL1 CD1 CL2 CD2 CL3 CD3");
+                for (std::size_t i = 0; i < 6; ++i)
+                    within(v[i], -max_coefficient, max_coefficient, d, name,
+                           fmt::format("{}{}", i % 2 == 0 ? "CL" : "CD", i / 2 + 1),
+                           "a polar coefficient");
                 ignore(line.number, name,
                        "section profile drag polars are not modelled (the header CDp is)");
                 return;
@@ -591,7 +712,9 @@ private:
             case Key::design: {
                 (void)in_section(line, name);
                 const Line& d = data_line(line, name, "a line with DName Wdes");
-                (void)numbers(d, name, 0, 1, "DName Wdes", 1);
+                const auto v = numbers(d, name, 0, 1, "DName Wdes", 1);
+                if (!v.empty())
+                    within(v[0], -max_factor, max_factor, d, name, "Wdes", "a design weight");
                 ignore(line.number, name, "design variables are not modelled");
                 return;
             }
@@ -640,6 +763,7 @@ private:
             fail(d.number, "SURFACE",
                  fmt::format("Nchord = {}; expected at least 1 chordwise vortex",
                              s.surface.n_chord));
+        (void)count(v[0], 1, max_chordwise, d, "SURFACE", "Nchord", "a chordwise vortex count");
         s.surface.chord_spacing = v[1];
         check_spacing(v[1], d, "SURFACE", "Cspace");
         if (v.size() == 3)
@@ -650,6 +774,7 @@ private:
             if (s.surface.n_span < 0)
                 fail(d.number, "SURFACE",
                      fmt::format("Nspan = {}; expected a count >= 0", s.surface.n_span));
+            (void)count(v[2], 0, max_spanwise, d, "SURFACE", "Nspan", "a spanwise vortex count");
             s.surface.span_spacing = v[3];
             check_spacing(v[3], d, "SURFACE", "Sspace");
         } else {
@@ -672,11 +797,14 @@ private:
             numbers(d, "SECTION", 5, 7, "Xle Yle Zle Chord Ainc, then optionally Nspan Sspace");
         PendingSection p;
         p.line = line.number;
-        p.section.leading_edge = Eigen::Vector3d(v[0], v[1], v[2]);
+        p.section.leading_edge =
+            Eigen::Vector3d(length(v[0], d, "SECTION", "Xle"), length(v[1], d, "SECTION", "Yle"),
+                            length(v[2], d, "SECTION", "Zle"));
         p.section.chord = v[3];
         if (!(v[3] > 0.0))
             fail(d.number, "SECTION", fmt::format("Chord = {:g}; expected a chord > 0", v[3]));
-        p.section.incidence = v[4] * deg;
+        (void)length(v[3], d, "SECTION", "Chord");
+        p.section.incidence = angle_deg(v[4], d, "SECTION", "Ainc") * deg;
         if (v.size() == 6)
             warn(d.number, "SECTION", "Nspan given without Sspace: ignored (as AVL does)");
         if (v.size() == 7) {
@@ -684,6 +812,7 @@ private:
             if (p.section.n_span < 0)
                 fail(d.number, "SECTION",
                      fmt::format("Nspan = {}; expected a count >= 0", p.section.n_span));
+            (void)count(v[5], 0, max_spanwise, d, "SECTION", "Nspan", "a spanwise vortex count");
             p.section.span_spacing = v[6];
         } else {
             p.section.n_span = 0;
@@ -728,7 +857,8 @@ private:
         const auto range = x_range(line, "AIRFOIL", 1);
         std::vector<Eigen::Vector2d> pts;
         while (pos_ < lines_.size()) {
-            const auto v = leading_numbers(words(lines_[pos_].text), 0, 2);
+            const auto v =
+                leading(lines_[pos_], "AIRFOIL", words(lines_[pos_].text), 0, 2, "'x y' pairs");
             if (v.size() < 2) break;
             pts.emplace_back(v[0], v[1]);
             ++pos_;
@@ -766,6 +896,11 @@ private:
         const std::string key = path.lexically_normal().string();
         if (const auto it = airfoils_.find(key); it != airfoils_.end()) return it->second;
         const std::string text = read_referenced(path, d, "AFILE");
+        try {
+            check_coordinates_finite(text, path.string());
+        } catch (const InputError& e) {
+            fail(d.number, "AFILE", e.what());
+        }
         try {
             return airfoils_.emplace(key, Airfoil::from_file(path)).first->second;
         } catch (const InputError& original) {
@@ -840,15 +975,22 @@ private:
                              v.size() - 2, d.text, fields));
         SectionControl c;
         c.name = lower(ws.front());
-        c.gain = v.size() > 0 ? v[0] : 1.0;
+        c.gain = v.size() > 0 ? within(v[0], -max_factor, max_factor, d, "CONTROL", "gain",
+                                       "a deflection gain")
+                              : 1.0;
         c.hinge_chord_fraction = v.size() > 1 ? v[1] : 0.0;
         if (std::abs(c.hinge_chord_fraction) > 1.0)
             fail(d.number, "CONTROL",
                  fmt::format("Xhinge = {:g}; expected a chord fraction in [-1, 1] (negative: "
                              "leading-edge surface)",
                              c.hinge_chord_fraction));
-        if (v.size() >= 5) c.hinge_axis = Eigen::Vector3d(v[2], v[3], v[4]);
-        c.duplicate_sign = v.size() >= 6 ? v[5] : 1.0;
+        if (v.size() >= 5)
+            c.hinge_axis = Eigen::Vector3d(length(v[2], d, "CONTROL", "Xhvec"),
+                                           length(v[3], d, "CONTROL", "Yhvec"),
+                                           length(v[4], d, "CONTROL", "Zhvec"));
+        c.duplicate_sign = v.size() >= 6 ? within(v[5], -max_factor, max_factor, d, "CONTROL",
+                                                  "SgnDup", "a deflection factor")
+                                         : 1.0;
         sec.controls.push_back(std::move(c));
     }
 
@@ -899,6 +1041,7 @@ private:
         const auto v = numbers(d, "BODY", 2, 2, "Nbody Bspace");
         if (integer(v[0], d, "BODY", "Nbody") < 2)
             fail(d.number, "BODY", fmt::format("Nbody = {:g}; expected at least 2 nodes", v[0]));
+        (void)count(v[0], 2, max_spanwise, d, "BODY", "Nbody", "a node count");
         check_spacing(v[1], d, "BODY", "Bspace");
         body_ = std::move(b);
     }
@@ -913,6 +1056,7 @@ private:
         const fs::path path = resolve(name);
         const std::string text = read_referenced(path, d, "BFILE");
         try {
+            check_coordinates_finite(text, path.string());
             body_->outline = coordinate_pairs(text, path).second;
         } catch (const InputError& e) {
             fail(d.number, "BFILE", e.what());
