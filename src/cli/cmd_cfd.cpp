@@ -120,14 +120,18 @@ int run_cfd(const CfdArgs& a) {
     const std::string fingerprint =
         euler::mesh_fingerprint(local.mesh, local.global_node, local.n_owned, comm);
 
-    auto scatter = [&](const std::vector<double>& U_global) {
-        euler::NodeStates U(5, local.mesh.n_nodes());
-        for (mesh::Index i = 0; i < local.mesh.n_nodes(); ++i)
+    // 5 values per global node -> 5 per local node (owned and ghosts).
+    auto to_local = [&]<class T>(const std::vector<T>& global_values) {
+        std::vector<T> v(5 * static_cast<std::size_t>(local.mesh.n_nodes()));
+        for (std::size_t i = 0; i < local.global_node.size(); ++i)
             for (int k = 0; k < 5; ++k)
-                U(k, i) = U_global[5 * static_cast<std::size_t>(
-                                           local.global_node[static_cast<std::size_t>(i)]) +
-                                   k];
-        solver.set_state(U);
+                v[5 * i + k] =
+                    global_values[5 * static_cast<std::size_t>(local.global_node[i]) + k];
+        return v;
+    };
+    auto scatter = [&](const std::vector<double>& U_global) {
+        const std::vector<double> v = to_local(U_global);
+        solver.set_state(Eigen::Map<const euler::NodeStates>(v.data(), 5, local.mesh.n_nodes()));
     };
 
     // Continue from this folder's restart file, or warm-start from another run's.
@@ -144,6 +148,8 @@ int run_cfd(const CfdArgs& a) {
                 restart_file.string(), r.mach, r.alpha / deg, r.beta / deg));
         scatter(r.U);
         solver.set_iteration_state(r.state);
+        if (!r.U_backoff.empty()) solver.set_backoff_state(to_local(r.U_backoff));
+        if (r.state.limiter_frozen) solver.set_frozen_limiter(to_local(r.limiter));
         resumed_from = r.state.iteration;
         if (root && std::filesystem::exists(out / "history.csv")) {
             std::ifstream in(out / "history.csv");
@@ -174,8 +180,18 @@ int run_cfd(const CfdArgs& a) {
             std::span<const double>(solver.state().data(),
                                     static_cast<std::size_t>(solver.state().size())),
             5, comm);
+        // The back-off state and the frozen limiter: a resumed run continues bit for bit.
+        const std::vector<float>& good = solver.backoff_state();
+        const std::vector<double> good_global =
+            parallel::gather_owned(local, std::vector<double>(good.begin(), good.end()), 5, comm);
+        const bool frozen = solver.iteration_state().limiter_frozen;
+        const std::vector<double> phi =
+            frozen ? parallel::gather_owned(local, solver.limiter_values(), 5, comm)
+                   : std::vector<double>{};
         if (!root) return;
         euler::RestartData r;
+        r.U_backoff.assign(good_global.begin(), good_global.end());
+        r.limiter = phi;
         r.fingerprint = fingerprint;
         r.state = solver.iteration_state();
         r.mach = setup.flow.mach;
@@ -244,17 +260,15 @@ int run_cfd(const CfdArgs& a) {
     if (!root) return 0;
 
     const auto n = static_cast<std::size_t>(out_mesh.n_nodes());
-    std::vector<double> rho(n), u(n), v(n), w(n), p(n);
+    std::vector<double> rho(n), velocity(3 * n), p(n);
     for (std::size_t i = 0; i < n; ++i) {
         rho[i] = prim[5 * i];
-        u[i] = prim[5 * i + 1];
-        v[i] = prim[5 * i + 2];
-        w[i] = prim[5 * i + 3];
+        for (int k = 0; k < 3; ++k) velocity[3 * i + k] = prim[5 * i + 1 + k];
         p[i] = prim[5 * i + 4];
     }
+    // Velocity as one 3-component array (ParaView glyphs and stream tracers take it directly).
     const std::vector<mesh::VtuField> fields{
-        {"density", rho}, {"velocity_x", u}, {"velocity_y", v}, {"velocity_z", w},
-        {"pressure", p},  {"Cp", cp},        {"Mach", machs}};
+        {"density", rho}, {"Velocity", velocity, 3}, {"pressure", p}, {"Cp", cp}, {"Mach", machs}};
     if (cfg.output.surface) {
         euler::write_surface_csv(out / "surface.csv", out_mesh, setup.roles, prim, cp, machs,
                                  file_node);

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
@@ -16,7 +17,8 @@ namespace manta::euler {
 
 namespace {
 
-constexpr char restart_magic[] = "MANTA-EULER-RESTART 1\n";
+constexpr char restart_magic[] = "MANTA-EULER-RESTART 2\n";
+constexpr char restart_magic_v1[] = "MANTA-EULER-RESTART 1\n";
 
 void put(std::string& s, const void* p, std::size_t n) {
     s.append(static_cast<const char*>(p), n);
@@ -97,19 +99,36 @@ std::string mesh_fingerprint(const mesh::Mesh& mesh, std::span<const std::int64_
 }
 
 void write_restart(const std::filesystem::path& file, const RestartData& d) {
+    const auto n = static_cast<std::uint64_t>(d.U.size() / 5);
+    if (!d.U_backoff.empty() && d.U_backoff.size() != d.U.size())
+        throw InputError(fmt::format("{}: restart back-off state of {} values for {} nodes",
+                                     file.string(), d.U_backoff.size(), n));
+    if (!d.limiter.empty() && d.limiter.size() != d.U.size())
+        throw InputError(fmt::format("{}: restart limiter of {} values for {} nodes", file.string(),
+                                     d.limiter.size(), n));
     std::string s(restart_magic);
     const auto flen = static_cast<std::uint64_t>(d.fingerprint.size());
     put(s, &flen, sizeof flen);
     s += d.fingerprint;
-    const std::int64_t it = d.state.iteration;
-    const std::int64_t frozen = d.state.limiter_frozen ? 1 : 0;
-    put(s, &it, sizeof it);
-    put(s, &frozen, sizeof frozen);
-    for (double v : {d.state.cfl, d.state.peak_log10_residual, d.mach, d.alpha, d.beta})
+    const IterationState& st = d.state;
+    for (const std::int64_t v :
+         {std::int64_t{st.iteration}, std::int64_t{st.limiter_frozen ? 1 : 0},
+          std::int64_t{st.stall_since}, std::int64_t{st.cycle_since}, std::int64_t{st.backoffs},
+          static_cast<std::int64_t>(st.window.size())})
         put(s, &v, sizeof v);
-    const auto n = static_cast<std::uint64_t>(d.U.size() / 5);
+    for (const double v :
+         {st.cfl, st.peak_log10_residual, st.best_log10_residual, st.previous_log10_residual,
+          st.cfl_cap, st.cfl_good, st.stall_best, d.mach, d.alpha, d.beta})
+        put(s, &v, sizeof v);
+    for (const auto& w : st.window) put(s, w.data(), 3 * sizeof(double));
     put(s, &n, sizeof n);
     put(s, d.U.data(), d.U.size() * sizeof(double));
+    const std::uint64_t has_backoff = d.U_backoff.empty() ? 0 : 1;
+    const std::uint64_t has_limiter = d.limiter.empty() ? 0 : 1;
+    put(s, &has_backoff, sizeof has_backoff);
+    put(s, d.U_backoff.data(), d.U_backoff.size() * sizeof(float));
+    put(s, &has_limiter, sizeof has_limiter);
+    put(s, d.limiter.data(), d.limiter.size() * sizeof(double));
     core::write_file_atomic(file, s);
 }
 
@@ -127,10 +146,11 @@ RestartData read_restart(const std::filesystem::path& file, std::int64_t n_nodes
         pos += n;
     };
     const std::size_t ml = std::strlen(restart_magic);
-    if (s.compare(0, ml, restart_magic) != 0)
+    const bool v1 = s.compare(0, ml, restart_magic_v1) == 0;
+    if (!v1 && s.compare(0, ml, restart_magic) != 0)
         throw InputError(
             fmt::format("{}: not a MANTA Euler restart file (expected the header "
-                        "'MANTA-EULER-RESTART 1')",
+                        "'MANTA-EULER-RESTART 2' or '... 1')",
                         name));
     pos = ml;
     RestartData d;
@@ -139,16 +159,40 @@ RestartData read_restart(const std::filesystem::path& file, std::int64_t n_nodes
     if (flen > 4096) throw InputError(fmt::format("{}: corrupt restart header", name));
     d.fingerprint.resize(flen);
     get(d.fingerprint.data(), flen);
-    std::int64_t it = 0, frozen = 0;
-    get(&it, sizeof it);
-    get(&frozen, sizeof frozen);
-    d.state.iteration = static_cast<int>(it);
-    d.state.limiter_frozen = frozen != 0;
-    get(&d.state.cfl, sizeof(double));
-    get(&d.state.peak_log10_residual, sizeof(double));
+    IterationState& st = d.state;
+    std::uint64_t window = 0;
+    if (v1) {
+        std::int64_t it = 0, frozen = 0;
+        get(&it, sizeof it);
+        get(&frozen, sizeof frozen);
+        st.iteration = static_cast<int>(it);
+        get(&st.cfl, sizeof(double));
+        get(&st.peak_log10_residual, sizeof(double));
+        // The frozen limiter values are not in this format: recompute and freeze them again.
+        st.limiter_frozen = false;
+        st.cfl_cap = 0.0;  // solve() starts it at solver.cfl_max
+        st.cfl_good = st.cfl;
+        st.stall_since = st.cycle_since = st.iteration;
+    } else {
+        std::int64_t v[6];
+        get(v, sizeof v);
+        st.iteration = static_cast<int>(v[0]);
+        st.limiter_frozen = v[1] != 0;
+        st.stall_since = static_cast<int>(v[2]);
+        st.cycle_since = static_cast<int>(v[3]);
+        st.backoffs = static_cast<int>(v[4]);
+        if (v[5] < 0 || v[5] > 100000)
+            throw InputError(fmt::format("{}: corrupt restart header (window {})", name, v[5]));
+        window = static_cast<std::uint64_t>(v[5]);
+        for (double* p : {&st.cfl, &st.peak_log10_residual, &st.best_log10_residual,
+                          &st.previous_log10_residual, &st.cfl_cap, &st.cfl_good, &st.stall_best})
+            get(p, sizeof(double));
+    }
     get(&d.mach, sizeof(double));
     get(&d.alpha, sizeof(double));
     get(&d.beta, sizeof(double));
+    st.window.resize(window);
+    for (auto& w : st.window) get(w.data(), 3 * sizeof(double));
     std::uint64_t n = 0;
     get(&n, sizeof n);
     if (n_nodes > 0 && n != static_cast<std::uint64_t>(n_nodes))
@@ -159,6 +203,22 @@ RestartData read_restart(const std::filesystem::path& file, std::int64_t n_nodes
             fmt::format("{}: the restart file is truncated ({} nodes announced)", name, n));
     d.U.resize(5 * n);
     get(d.U.data(), d.U.size() * sizeof(double));
+    if (!v1) {
+        std::uint64_t has = 0;
+        get(&has, sizeof has);
+        if (has != 0) {
+            d.U_backoff.resize(5 * n);
+            get(d.U_backoff.data(), d.U_backoff.size() * sizeof(float));
+        }
+        get(&has, sizeof has);
+        if (has != 0) {
+            d.limiter.resize(5 * n);
+            get(d.limiter.data(), d.limiter.size() * sizeof(double));
+        }
+        if (st.limiter_frozen && d.limiter.empty())
+            throw InputError(
+                fmt::format("{}: corrupt restart file (frozen limiter without values)", name));
+    }
     return d;
 }
 

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <limits>
 
 #include "manta/core/error.hpp"
@@ -146,6 +145,9 @@ SteadySolver::SteadySolver(const Domain& domain, const parallel::Communicator& c
         volume / static_cast<double>(std::max<std::int64_t>(1, n_global_nodes_)), 2.0 / 3.0);
     log10_roundoff_ = std::log10(1e-12 * setup_.flow.mach * face);
     it_.cfl = setup_.solver.cfl_initial;
+    it_.cfl_good = setup_.solver.cfl_initial;
+    it_.cfl_cap = setup_.solver.cfl_max;
+    U_good_.assign(U_.data(), U_.data() + U_.size());
 
     // Reference area: the configured one or the wall area projected on the z-normal plane,
     // from the wall nodes' dual boundary faces (so a node's upper and lower parts at a sharp
@@ -188,6 +190,7 @@ void SteadySolver::set_state(const NodeStates& U) {
     }
     U_.leftCols(domain_.n_owned) = U.leftCols(domain_.n_owned);
     exchange(U_);
+    U_good_.assign(U_.data(), U_.data() + U_.size());
 }
 
 std::array<double, 5> SteadySolver::rms_residual() const {
@@ -277,6 +280,42 @@ std::size_t SteadySolver::memory_bytes() const noexcept {
            op_.memory_bytes() + (op_first_ ? op_first_->memory_bytes() : 0);
 }
 
+void SteadySolver::set_iteration_state(const IterationState& s) {
+    it_ = s;
+    op_.freeze_limiter(s.limiter_frozen);
+}
+
+void SteadySolver::set_backoff_state(std::vector<float> U) {
+    if (U.size() != static_cast<std::size_t>(U_.size()))
+        throw InputError(fmt::format("back-off state has {} values; expected {} (5 per node)",
+                                     U.size(), U_.size()));
+    U_good_ = std::move(U);
+}
+
+std::vector<double> SteadySolver::limiter_values() const {
+    if (!setup_.spatial.limiter || setup_.spatial.order != 2 ||
+        setup_.spatial.flux.scheme == FluxScheme::jst)
+        return {};
+    std::vector<double> phi(static_cast<std::size_t>(U_.size()));
+    for (Index i = 0; i < U_.cols(); ++i)
+        Eigen::Map<Vec5>(phi.data() + 5 * static_cast<std::size_t>(i)) = op_.limiter(i);
+    return phi;
+}
+
+void SteadySolver::set_frozen_limiter(std::span<const double> phi) {
+    if (phi.size() != static_cast<std::size_t>(U_.size()))
+        throw InputError(fmt::format("frozen limiter has {} values; expected {} (5 per node)",
+                                     phi.size(), U_.size()));
+    for (Index i = 0; i < U_.cols(); ++i) {
+        const Vec5 v = Eigen::Map<const Vec5>(phi.data() + 5 * static_cast<std::size_t>(i));
+        if (!(v.minCoeff() >= 0.0 && v.maxCoeff() <= 1.0))
+            throw InputError(
+                fmt::format("frozen limiter: node {} has values {}..{}; expected values in [0, 1]",
+                            i, v.minCoeff(), v.maxCoeff()));
+        op_.set_limiter(i, v);
+    }
+}
+
 SolveOutcome SteadySolver::solve(const Monitor& monitor) {
     using clock = std::chrono::steady_clock;
     const auto t0 = clock::now();
@@ -284,35 +323,31 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
     const double gamma = setup_.flow.gamma;
     const Index n_owned = domain_.n_owned;
 
+    // Every decision below reads and writes it_ only (no local state), so a run resumed from a
+    // checkpoint of it_, U_, U_good_ and the frozen limiter takes the same decisions.
     SolveOutcome out;
-    std::deque<std::array<double, 3>> window;
-    double previous = std::numeric_limits<double>::quiet_NaN();
-    double best = std::numeric_limits<double>::infinity();
-    double cfl_cap = s.cfl_max;
-    double stall_best = std::numeric_limits<double>::infinity();
-    int stall_since = it_.iteration;
-    int cycle_since = it_.iteration;  ///< iteration of the lowest residual so far
-    double cfl_good = it_.cfl;
-    U_good_.assign(U_.data(), U_.data() + U_.size());
-    if (it_.limiter_frozen) op_.freeze_limiter(true);
+    op_.freeze_limiter(it_.limiter_frozen);
+    if (!(it_.cfl_cap > 0.0)) it_.cfl_cap = s.cfl_max;
 
     auto back_off = [&](const std::string& why) {
-        ++out.backoffs;
-        if (out.backoffs > s.max_backoffs)
+        ++it_.backoffs;
+        out.backoffs = it_.backoffs;
+        if (it_.backoffs > s.max_backoffs)
             throw ConvergenceError(fmt::format(
                 "{}: the iteration diverged at iteration {} ({}) after {} CFL back-offs "
                 "(CFL {:.3g}); try a smaller solver.cfl_max, first-order start iterations "
                 "(solver.first_order_iterations) or order 1",
                 domain_.mesh->source(), it_.iteration, why, s.max_backoffs, it_.cfl));
         std::copy(U_good_.begin(), U_good_.end(), U_.data());
-        cfl_cap = std::max(s.cfl_initial * 0.1, 0.25 * std::min(it_.cfl, cfl_cap));
-        it_.cfl = std::max(0.1 * cfl_good, 0.1);
-        cfl_good = it_.cfl;
-        previous = std::numeric_limits<double>::quiet_NaN();
-        window.clear();
+        it_.cfl_cap = std::max(s.cfl_initial * 0.1, 0.25 * std::min(it_.cfl, it_.cfl_cap));
+        it_.cfl = std::max(0.1 * it_.cfl_good, 0.1);
+        it_.cfl_good = it_.cfl;
+        it_.previous_log10_residual = std::numeric_limits<double>::quiet_NaN();
+        it_.window.clear();
     };
 
     while (true) {
+        out.backoffs = it_.backoffs;
         const bool first_order = op_first_ && it_.iteration < s.first_order_iterations;
         SpatialOperator& op = first_order ? *op_first_ : op_;
         op.residual(U_, R_);
@@ -327,26 +362,30 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
             sound = sound && finite(rms[k]);
         }
         const double res = rec.log10_residual[0];
-        if (!sound || res > best + 5.0) {
+        if (!sound || res > it_.best_log10_residual + 5.0) {
             back_off(!sound
                          ? "NaN in the residual"
                          : fmt::format("density residual 10^{:.2f}, 10^5 times its lowest", res));
             continue;
         }
-        if (res < best) cycle_since = it_.iteration;
-        best = std::min(best, res);
-        if (!first_order) it_.peak_log10_residual = std::max(it_.peak_log10_residual, res);
-        const double drop = first_order ? 0.0 : it_.peak_log10_residual - res;
+        // This iteration's bookkeeping goes to `next`; it_ takes it only if the iteration goes
+        // on, so a stopped run's state (checkpointed after solve) stops again the same way.
+        IterationState next = it_;
+        if (res < next.best_log10_residual) next.cycle_since = it_.iteration;
+        next.best_log10_residual = std::min(next.best_log10_residual, res);
+        if (!first_order) next.peak_log10_residual = std::max(next.peak_log10_residual, res);
+        const double drop = first_order ? 0.0 : next.peak_log10_residual - res;
         rec.forces = forces();
         rec.cfl = it_.cfl;
 
         // Settled coefficients over the window.
-        window.push_back({rec.forces.CL, rec.forces.CD, rec.forces.CY});
-        if (static_cast<int>(window.size()) > s.coefficient_window) window.pop_front();
-        bool settled = static_cast<int>(window.size()) == s.coefficient_window;
+        next.window.push_back({rec.forces.CL, rec.forces.CD, rec.forces.CY});
+        if (static_cast<int>(next.window.size()) > s.coefficient_window)
+            next.window.erase(next.window.begin());
+        bool settled = static_cast<int>(next.window.size()) == s.coefficient_window;
         for (int c = 0; c < 3 && settled; ++c) {
-            double lo = window.front()[c], hi = lo;
-            for (const auto& w : window) {
+            double lo = next.window.front()[c], hi = lo;
+            for (const auto& w : next.window) {
                 lo = std::min(lo, w[c]);
                 hi = std::max(hi, w[c]);
             }
@@ -385,42 +424,43 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
         // its peak (a plateau before that is the start-up transient, shocks still moving: a
         // limiter frozen there holds a solution far from the final one, and the transonic
         // NACA 0012 on the finest slab then crawls at a cut CFL number).
-        if (res < stall_best - 0.1) {
-            stall_best = res;
-            stall_since = it_.iteration;
+        if (res < next.stall_best - 0.1) {
+            next.stall_best = res;
+            next.stall_since = it_.iteration;
         }
         const bool stalled = s.freeze_limiter_stall > 0 && !first_order && drop >= 1.0 &&
-                             it_.iteration - stall_since >= s.freeze_limiter_stall;
-        if (!it_.limiter_frozen &&
+                             it_.iteration - next.stall_since >= s.freeze_limiter_stall;
+        if (!next.limiter_frozen &&
             ((s.freeze_limiter_drop > 0 && drop >= s.freeze_limiter_drop) || stalled)) {
             op_.freeze_limiter(true);
-            it_.limiter_frozen = true;
-            stall_best = res;
-            stall_since = it_.iteration;
-        } else if (it_.limiter_frozen && s.freeze_limiter_stall > 0 && !first_order &&
-                   it_.iteration - cycle_since >= s.freeze_limiter_stall &&
-                   cfl_cap > s.cfl_initial) {
+            next.limiter_frozen = true;
+            next.stall_best = res;
+            next.stall_since = it_.iteration;
+        } else if (next.limiter_frozen && s.freeze_limiter_stall > 0 && !first_order &&
+                   it_.iteration - next.cycle_since >= s.freeze_limiter_stall &&
+                   next.cfl_cap > s.cfl_initial) {
             // No new lowest residual for as many iterations with the operator fixed: the
             // first-order implicit operator does not steer the second-order residual at this
             // CFL number (a defect-correction cycle; slow but steady progress is not one). A
             // smaller CFL number damps it.
-            cfl_cap = std::max(s.cfl_initial, 0.1 * cfl_cap);
-            it_.cfl = std::min(it_.cfl, cfl_cap);
-            cycle_since = it_.iteration;
+            next.cfl_cap = std::max(s.cfl_initial, 0.1 * next.cfl_cap);
+            next.cfl = std::min(next.cfl, next.cfl_cap);
+            next.cycle_since = it_.iteration;
         }
 
         // CFL: grow while the residual falls, cut when it rises.
-        if (finite(previous)) {
-            if (res > previous + std::log10(s.cfl_cut_trigger))
-                it_.cfl = std::max(s.cfl_initial * 0.1, it_.cfl * s.cfl_cut);
+        if (finite(next.previous_log10_residual)) {
+            if (res > next.previous_log10_residual + std::log10(s.cfl_cut_trigger))
+                next.cfl = std::max(s.cfl_initial * 0.1, next.cfl * s.cfl_cut);
             else
-                it_.cfl = std::min(cfl_cap, it_.cfl * s.cfl_growth);
+                next.cfl = std::min(next.cfl_cap, next.cfl * s.cfl_growth);
         }
-        previous = res;
-        if (res <= best + 0.5 && it_.iteration % 5 == 0) {
+        next.previous_log10_residual = res;
+        if (res <= next.best_log10_residual + 0.5 && it_.iteration % 5 == 0) {
             std::copy(U_.data(), U_.data() + U_.size(), U_good_.begin());
-            cfl_good = it_.cfl;
+            next.cfl_good = next.cfl;
         }
+        it_ = std::move(next);
 
         // (V / dt + dR/dU) dU = -R with dt_i = CFL V_i / lambda_i.
         op.jacobian(U_, J_);
@@ -479,6 +519,7 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
         }
     }
     out.iterations = it_.iteration;
+    out.backoffs = it_.backoffs;
     out.wall_s = std::chrono::duration<double>(clock::now() - t0).count();
     return out;
 }

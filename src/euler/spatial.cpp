@@ -200,6 +200,11 @@ Vec5 SpatialOperator::limiter(Index n) const {
     return Eigen::Map<const Vec5>(gp_.data() + n_gp * static_cast<std::size_t>(n) + phi_offset);
 }
 
+void SpatialOperator::set_limiter(Index n, const Vec5& phi) {
+    if (gp_.empty() || !options_.limiter) return;
+    Eigen::Map<Vec5>(gp_.data() + n_gp * static_cast<std::size_t>(n) + phi_offset) = phi;
+}
+
 void SpatialOperator::compute_primitive(const NodeStates& U) {
     MANTA_REQUIRE(U.cols() == n_local_, "euler residual: U needs one column per local node");
     const double g1 = gamma_ - 1.0;

@@ -14,9 +14,28 @@ namespace manta::mesh {
 namespace {
 
 void check_field(const Mesh& mesh, const VtuField& f, std::size_t n, const char* what) {
-    if (f.values.size() != n)
-        throw InputError(fmt::format("{}: VTU field '{}' has {} values; expected one per {} ({})",
-                                     mesh.source(), f.name, f.values.size(), what, n));
+    if (f.components < 1 || f.components > 9)
+        throw InputError(fmt::format("{}: VTU field '{}' has {} components; expected 1 to 9",
+                                     mesh.source(), f.name, f.components));
+    const std::size_t c = static_cast<std::size_t>(f.components);
+    if (f.values.size() != c * n)
+        throw InputError(fmt::format("{}: VTU field '{}' has {} values; expected {} per {} ({})",
+                                     mesh.source(), f.name, f.values.size(), c, what, c * n));
+}
+
+/// The opening tag of a field's DataArray.
+std::string array_tag(const VtuField& f) {
+    if (f.components == 1)
+        return fmt::format("<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", f.name);
+    return fmt::format(
+        "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
+        f.name, f.components);
+}
+
+/// The values of entity `n` of a field, one line.
+void append_values(std::string& s, const VtuField& f, std::size_t n) {
+    const auto c = static_cast<std::size_t>(f.components);
+    s += fmt::format("{}\n", fmt::join(f.values.subspan(c * n, c), " "));
 }
 
 void header(std::string& s, std::size_t n_points, std::size_t n_cells) {
@@ -67,9 +86,9 @@ void write_vtu_volume(const std::filesystem::path& file, const Mesh& mesh,
     }
     s += "</DataArray>\n</CellData>\n<PointData>\n";
     for (const auto& f : node_fields) {
-        s += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", f.name);
-        for (double v : f.values) {
-            s += fmt::format("{}\n", v);
+        s += array_tag(f);
+        for (std::size_t n = 0; n < static_cast<std::size_t>(mesh.n_nodes()); ++n) {
+            append_values(s, f, n);
             out.spill(s);
         }
         s += "</DataArray>\n";
@@ -117,8 +136,8 @@ void write_vtu_surface(const std::filesystem::path& file, const Mesh& mesh,
     for (Index f = 0; f < mesh.n_faces(); ++f) s += fmt::format("{}\n", mesh.face_marker(f));
     s += "</DataArray>\n</CellData>\n<PointData>\n";
     for (const auto& f : node_fields) {
-        s += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", f.name);
-        for (Index n : used) s += fmt::format("{}\n", f.values[n]);
+        s += array_tag(f);
+        for (Index n : used) append_values(s, f, static_cast<std::size_t>(n));
         s += "</DataArray>\n";
     }
     s += "</PointData>\n";

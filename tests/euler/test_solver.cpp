@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "manta/core/error.hpp"
 #include "manta/euler/config.hpp"
@@ -109,8 +110,29 @@ TEST(RestartFile, RoundTripAndErrors) {
     d.alpha = 0.02;
     d.beta = -0.01;
     d.U = {1, 0.8, 0, 0.01, 2.1, 1.1, 0.7, 0, 0.02, 2.0, 0.9, 0.9, 0.1, 0, 1.9};
+    d.state.best_log10_residual = -7.5;
+    d.state.cfl_cap = 250.0;
+    d.state.cfl_good = 125.0;
+    d.state.stall_best = -7.25;
+    d.state.stall_since = 11;
+    d.state.cycle_since = 13;
+    d.state.backoffs = 2;
+    d.state.window = {{0.3, 0.02, 0.0}, {0.31, 0.021, 1e-9}};
+    d.U_backoff.assign(d.U.begin(), d.U.end());
+    d.limiter.assign(15, 0.5);
     euler::write_restart(dir / "r.bin", d);
     const euler::RestartData r = euler::read_restart(dir / "r.bin", 3);
+    EXPECT_EQ(r.state.best_log10_residual, -7.5);
+    EXPECT_TRUE(std::isnan(r.state.previous_log10_residual));
+    EXPECT_EQ(r.state.cfl_cap, 250.0);
+    EXPECT_EQ(r.state.cfl_good, 125.0);
+    EXPECT_EQ(r.state.stall_best, -7.25);
+    EXPECT_EQ(r.state.stall_since, 11);
+    EXPECT_EQ(r.state.cycle_since, 13);
+    EXPECT_EQ(r.state.backoffs, 2);
+    EXPECT_EQ(r.state.window, d.state.window);
+    EXPECT_EQ(r.U_backoff, d.U_backoff);
+    EXPECT_EQ(r.limiter, d.limiter);
     EXPECT_EQ(r.fingerprint, d.fingerprint);
     EXPECT_EQ(r.state.iteration, 17);
     EXPECT_EQ(r.state.cfl, 1234.5);
@@ -228,6 +250,71 @@ TEST(SteadySolver, RestartContinuesWhereItStopped) {
         c.set_state(U);
     });
     EXPECT_NE(bad.find("node 5"), std::string::npos) << bad;
+}
+
+TEST(SteadySolver, ResumeFromACheckpointIsBitForBitAndAFinishedRunStaysFinished) {
+    // A run stopped at any iteration and resumed from its checkpoint (through the restart file)
+    // must take the uninterrupted run's path exactly: the frozen limiter, the CFL control, the
+    // stall counters and the coefficient window are part of the state (issue 16, defect 1: the
+    // frozen limiter was lost, and the resumed ONERA M6 run converged to CD 0.020090 instead of
+    // 0.023598). The limiter freezes after one order here so that the stop falls after it.
+    Channel ch;
+    ch.setup.solver.freeze_limiter_drop = 1.0;
+    euler::SteadySolver a(ch.domain(), ch.comm, ch.setup);
+    int frozen_at = -1;
+    const euler::SolveOutcome oa = a.solve([&](const euler::IterationRecord& r) {
+        if (frozen_at < 0 && a.iteration_state().limiter_frozen) frozen_at = r.iteration;
+        return true;
+    });
+    ASSERT_TRUE(oa.converged) << oa.reason;
+    ASSERT_GT(frozen_at, 0);
+    ASSERT_GT(oa.iterations, frozen_at + 3);
+    const auto dir = std::filesystem::temp_directory_path() / "manta-euler-resume";
+    std::filesystem::create_directories(dir);
+    // Checkpoint a run stopped (as by a kill) two iterations after the freeze.
+    auto checkpoint = [&](const euler::SteadySolver& s, const std::filesystem::path& f) {
+        euler::RestartData d;
+        d.state = s.iteration_state();
+        d.U.assign(s.state().data(), s.state().data() + s.state().size());
+        d.U_backoff = s.backoff_state();
+        if (d.state.limiter_frozen) d.limiter = s.limiter_values();
+        euler::write_restart(f, d);
+    };
+    auto resume = [&](const std::filesystem::path& f) {
+        const euler::RestartData r = euler::read_restart(f, ch.mesh.n_nodes());
+        auto s = std::make_unique<euler::SteadySolver>(ch.domain(), ch.comm, ch.setup);
+        s->set_state(Eigen::Map<const euler::NodeStates>(r.U.data(), 5, ch.mesh.n_nodes()));
+        s->set_iteration_state(r.state);
+        s->set_backoff_state(r.U_backoff);
+        if (r.state.limiter_frozen) s->set_frozen_limiter(r.limiter);
+        return s;
+    };
+    {
+        euler::SteadySolver b(ch.domain(), ch.comm, ch.setup);
+        (void)b.solve([&](const euler::IterationRecord& r) { return r.iteration < frozen_at + 2; });
+        ASSERT_TRUE(b.iteration_state().limiter_frozen);
+        checkpoint(b, dir / "stopped.bin");
+    }
+    const auto c = resume(dir / "stopped.bin");
+    const euler::SolveOutcome oc = c->solve();
+    EXPECT_TRUE(oc.converged) << oc.reason;
+    EXPECT_EQ(oc.iterations, oa.iterations);
+    EXPECT_EQ(oc.forces.CL, oa.forces.CL);
+    EXPECT_EQ(oc.forces.CD, oa.forces.CD);
+    EXPECT_TRUE((c->state().array() == a.state().array()).all()) << "resumed state differs";
+    // The finished run started again stops at once with the same outcome and state.
+    checkpoint(a, dir / "finished.bin");
+    const auto d = resume(dir / "finished.bin");
+    const euler::SolveOutcome od = d->solve();
+    EXPECT_TRUE(od.converged) << od.reason;
+    EXPECT_EQ(od.iterations, oa.iterations);
+    EXPECT_EQ(od.forces.CD, oa.forces.CD);
+    EXPECT_EQ(od.residual_drop, oa.residual_drop);
+    EXPECT_TRUE((d->state().array() == a.state().array()).all()) << "finished state changed";
+    // A solver asked to solve again after finishing does not iterate either.
+    const euler::SolveOutcome again = a.solve();
+    EXPECT_EQ(again.iterations, oa.iterations);
+    EXPECT_EQ(again.forces.CD, oa.forces.CD);
 }
 
 TEST(SteadySolver, DivergenceStopsWithAClearError) {

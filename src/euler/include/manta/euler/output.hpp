@@ -34,6 +34,11 @@ struct RestartData {
     IterationState state;
     double mach = 0, alpha = 0, beta = 0;  ///< the flow condition it was computed at
     std::vector<double> U;                 ///< 5 conservative values per global node
+    /// The back-off state (`SteadySolver::backoff_state`), 5 per global node; empty in files
+    /// of format 1 (then the solution is used).
+    std::vector<float> U_backoff;
+    /// The frozen limiter, 5 per global node; empty when the limiter is not frozen.
+    std::vector<double> limiter;
 };
 
 /// Identity of a mesh for restart files: the global node count and a checksum of the nodes'
@@ -43,10 +48,13 @@ struct RestartData {
                                            std::span<const std::int64_t> global_node,
                                            mesh::Index n_owned, const parallel::Communicator& comm);
 
-/// Write a restart file (binary, little-endian doubles, atomically). IoError if not writable.
+/// Write a restart file (format 2: binary, little-endian, atomically; docs/formats.md). IoError
+/// if not writable.
 void write_restart(const std::filesystem::path& file, const RestartData& data);
-/// Read a restart file. IoError if unreadable; InputError naming the file if it is not a MANTA
-/// restart file, is truncated, or has `n_nodes` != the expected count (when > 0).
+/// Read a restart file of format 2 or 1 (format 1 holds only the solution and the first four
+/// `IterationState` fields: the rest take their start values, and a frozen limiter, which that
+/// format did not keep, is released). IoError if unreadable; InputError naming the file if it is
+/// not a MANTA restart file, is truncated, or has `n_nodes` != the expected count (when > 0).
 [[nodiscard]] RestartData read_restart(const std::filesystem::path& file, std::int64_t n_nodes = 0);
 
 }  // namespace manta::euler

@@ -11,7 +11,9 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -124,12 +126,28 @@ struct SolveOutcome {
     ForceCoefficients forces;
 };
 
-/// What a checkpoint keeps besides the solution.
+/// Everything of the iteration besides the solution that decides later iterations: a run resumed
+/// from it (with the solution, the back-off state and, when frozen, the limiter; `SteadySolver`)
+/// continues exactly as the uninterrupted run would, bit for bit.
 struct IterationState {
     int iteration = 0;
     double cfl = 0;
     double peak_log10_residual = -1e300;
     bool limiter_frozen = false;
+    /// Lowest density residual (log10) so far; divergence and back-off test against it.
+    double best_log10_residual = std::numeric_limits<double>::infinity();
+    /// The last iteration's density residual (log10) for the CFL control; NaN: none yet.
+    double previous_log10_residual = std::numeric_limits<double>::quiet_NaN();
+    double cfl_cap = 0;   ///< current upper bound of the CFL number (solver.cfl_max at the start)
+    double cfl_good = 0;  ///< CFL number of the last state saved for back-off
+    /// Stall detection of the limiter freeze: the lowest residual of the stall counter and the
+    /// iteration it was reached; the iteration of the lowest residual so far.
+    double stall_best = std::numeric_limits<double>::infinity();
+    int stall_since = 0;
+    int cycle_since = 0;
+    int backoffs = 0;  ///< CFL back-offs so far
+    /// The last `coefficient_window` iterations' CL, CD, CY (oldest first).
+    std::vector<std::array<double, 3>> window;
 };
 
 /// The steady solver on one (partition-local) mesh.
@@ -152,9 +170,25 @@ public:
     /// Replace the owned nodes' state (ghosts are exchanged here). InputError on a size mismatch
     /// or a non-physical state (naming the node).
     void set_state(const NodeStates& U);
-    /// The iteration counters kept in checkpoints.
+    /// The iteration state kept in checkpoints. `solve` stops without changing it (a converged
+    /// or finished state solved again stops at once with the same outcome), so a checkpoint
+    /// taken in the monitor or after `solve` resumes exactly.
     [[nodiscard]] const IterationState& iteration_state() const noexcept { return it_; }
-    void set_iteration_state(const IterationState& s) { it_ = s; }
+    /// Replace the iteration state; the limiter is frozen or released to match
+    /// `s.limiter_frozen` (give the frozen values with `set_frozen_limiter` after this).
+    void set_iteration_state(const IterationState& s);
+    /// The state the next CFL back-off returns to (conservative, 5 per local node); `set_state`
+    /// sets it to the new state.
+    [[nodiscard]] const std::vector<float>& backoff_state() const noexcept { return U_good_; }
+    /// Replace the back-off state (5 values per local node, ghosts included). InputError on a
+    /// size mismatch.
+    void set_backoff_state(std::vector<float> U);
+    /// The limiter values of the second-order operator (5 per local node), the frozen ones when
+    /// `iteration_state().limiter_frozen`; empty without a limiter.
+    [[nodiscard]] std::vector<double> limiter_values() const;
+    /// Set the frozen limiter values (5 per local node, ghosts included) after a resume.
+    /// InputError on a size mismatch or values outside [0, 1].
+    void set_frozen_limiter(std::span<const double> phi);
 
     /// Wall forces of the current state.
     [[nodiscard]] ForceCoefficients forces() const;

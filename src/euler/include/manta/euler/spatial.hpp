@@ -198,6 +198,9 @@ public:
     /// Limiter values phi (0..1, one per primitive variable) of node `n` from the last
     /// second-order `residual`; 1 without a limiter.
     [[nodiscard]] Vec5 limiter(mesh::Index n) const;
+    /// Replace the limiter values of local node `n` (a frozen limiter restored from a checkpoint);
+    /// nothing without a limiter.
+    void set_limiter(mesh::Index n, const Vec5& phi);
     /// Edges that fell back to first order in the last `residual` (non-positive reconstructed
     /// density or pressure).
     [[nodiscard]] std::int64_t positivity_fallbacks() const noexcept { return n_fallbacks_; }

@@ -12,10 +12,13 @@
 
 namespace manta::mesh {
 
-/// A named scalar field with one value per node (or per cell or face, see the writers).
+/// A named field with `components` values per node (or per cell or face, see the writers):
+/// 1 for a scalar, 3 for a vector (x, y, z of each entity in turn; ParaView's glyph and stream
+/// tracer filters take it as one vector array).
 struct VtuField {
     std::string name;                ///< array name shown in ParaView
-    std::span<const double> values;  ///< one value per entity
+    std::span<const double> values;  ///< `components` values per entity, entity-major
+    int components = 1;              ///< values per entity (1 to 9)
 };
 
 /// Write the volume cells with optional node fields and the cell volume as cell data. The file
