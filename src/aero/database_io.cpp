@@ -111,6 +111,30 @@ double read_number(const core::ConfigNode& n, std::string_view expected) {
     return v;
 }
 
+// Plausible ranges (issue 16, defect 12): a value outside them is refused with the range named,
+// rather than tabulated and flown. Mach numbers lie in [0, 10]. A coefficient of a static or
+// control table beyond 100 in magnitude, or a dynamic derivative beyond 1000, is no aerodynamic
+// coefficient (measured ones stay below 10 in magnitude; e.g. Stevens, Lewis and Johnson,
+// "Aircraft Control and Simulation", 3rd ed., table 3.5-1, the F-16 data).
+constexpr double max_static_coefficient = 100.0;
+constexpr double max_dynamic_coefficient = 1000.0;
+
+// Angles beyond 2 pi rad are refused by detail::validate_table ("looks like degrees").
+void check_breakpoint(const core::ConfigNode& n, Axis axis, double v) {
+    if (axis == Axis::mach && !(v <= 10.0))
+        n.fail("is outside the plausible range of a Mach number", "a Mach number in [0, 10]");
+}
+
+void check_coefficient(const core::ConfigNode& n, const Table& t, std::size_t column, double v) {
+    const double limit =
+        t.kind == TableKind::dynamic ? max_dynamic_coefficient : max_static_coefficient;
+    if (std::abs(v) <= limit) return;
+    n.fail(fmt::format("of table '{}' column '{}' is implausible for an aerodynamic {}", t.name,
+                       column < t.columns.size() ? t.columns[column] : std::string("?"),
+                       t.kind == TableKind::dynamic ? "derivative" : "coefficient"),
+           fmt::format("a number in [-{:g}, {:g}]", limit, limit));
+}
+
 std::vector<std::string> axis_names() {
     std::vector<std::string> v;
     for (const Axis a :
@@ -213,6 +237,7 @@ GridAxis read_axis(core::ConfigMap& am, core::ConfigNode& values_node) {
                 values_node.element(j).where(), name, j, v, unit, j - 1, previous, unit));
         }
         previous = v;
+        check_breakpoint(values_node.element(j), *axis, v);
         a.breakpoints.push_back(deg ? v * (std::numbers::pi / 180.0) : v);
     }
     am.finish();
@@ -274,8 +299,11 @@ Table read_table(const core::ConfigNode& node, ForceAxes force_axes, TableNodes&
                             row.is_sequence() ? fmt::format("{} entries", row.size()) : "no list",
                             nc, fmt::join(t.columns, ", ")));
         }
-        for (std::size_t c = 0; c < nc; ++c)
-            t.values.push_back(read_number(row.element(c), expected));
+        for (std::size_t c = 0; c < nc; ++c) {
+            const core::ConfigNode cell = row.element(c);
+            t.values.push_back(read_number(cell, expected));
+            check_coefficient(cell, t, c, t.values.back());
+        }
     }
     tm.finish();
     return t;

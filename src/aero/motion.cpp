@@ -23,6 +23,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
+#include "manta/core/utf8.hpp"
 
 namespace manta::aero {
 
@@ -96,6 +97,38 @@ struct RowLocator {
     }
 };
 
+// Plausible ranges of the motion columns (issue 16, defect 5): a value beyond them is a unit slip
+// or a broken file, never a motion to fly. Attitude angles may accumulate (an unwrapped heading in
+// a sustained turn passes 2 pi), so their bound is 100 rad, about 16 turns; a control deflection
+// beyond 90 deg is no deflection of a hinged surface; the reference point moves in a frame that
+// travels with the entry flight, so it stays within 100 km of its origin; times within 10^6 s.
+constexpr double max_abs_attitude = 100.0;
+constexpr double max_abs_deflection = std::numbers::pi / 2.0;
+constexpr double max_abs_position = 1e5;
+constexpr double max_abs_time = 1e6;
+
+/// " (degrees typed as radians? 5 rad would be 286.5 deg)" when `v` reads as a plausible
+/// number of degrees, else "".
+std::string degree_slip(double v) {
+    if (std::abs(v) > 360.0) return {};
+    return fmt::format(
+        " (degrees typed as radians? {} rad would be {:.1f} deg; {} deg is {:.4f} rad)",
+        core::format_exact(v), v * 180.0 / std::numbers::pi, core::format_exact(v),
+        v * std::numbers::pi / 180.0);
+}
+
+template <class Locator>
+void check_range(const std::vector<double>& v, std::string_view name, double limit,
+                 std::string_view unit, const Locator& at_row, std::string_view note) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        if (std::abs(v[i]) <= limit) continue;
+        throw InputError(fmt::format(
+            "{}: column '{}' value {} {} is outside the plausible range [-{:g}, {:g}] {}{}{}",
+            at_row(i), name, core::format_exact(v[i]), unit, limit, limit, unit, note,
+            unit == "rad" ? degree_slip(v[i]) : std::string()));
+    }
+}
+
 /// The invariants of a motion; `header` is where whole-column problems are reported.
 void check_motion(const Motion& m, const RowLocator& at_row, const std::string& header) {
     const std::size_t n = m.t.size();
@@ -126,8 +159,16 @@ void check_motion(const Motion& m, const RowLocator& at_row, const std::string& 
                 at_row(i), core::format_exact(m.t[i]), core::format_exact(m.t[i - 1])));
         }
     }
-    for (std::size_t k = 0; k < 3; ++k) check_column(m.position[k], position_columns[k]);
-    for (std::size_t k = 0; k < 3; ++k) check_column(m.angles[k], angle_columns[k]);
+    check_range(m.t, "t", max_abs_time, "s", at_row, "");
+    for (std::size_t k = 0; k < 3; ++k) {
+        check_column(m.position[k], position_columns[k]);
+        check_range(m.position[k], position_columns[k], max_abs_position, "m", at_row, "");
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+        check_column(m.angles[k], angle_columns[k]);
+        check_range(m.angles[k], angle_columns[k], max_abs_attitude, "rad", at_row,
+                    " (about 16 turns, unwrapped)");
+    }
     if (m.modes.size() != m.mode_names.size()) {
         throw InputError(fmt::format("{}: {} mode names but {} mode columns", header,
                                      m.mode_names.size(), m.modes.size()));
@@ -144,7 +185,18 @@ void check_motion(const Motion& m, const RowLocator& at_row, const std::string& 
             if (m.mode_names[j] == name)
                 throw InputError(fmt::format("{}: mode '{}' appears twice", header, name));
         }
-        check_column(m.modes[k], fmt::format("{}{}", mode_prefix, name));
+        const std::string column = fmt::format("{}{}", mode_prefix, name);
+        check_column(m.modes[k], column);
+        for (std::size_t i = 0; i < n; ++i) {
+            const double v = m.modes[k][i];
+            if (std::abs(v) > max_abs_deflection) {
+                throw InputError(fmt::format(
+                    "{}: column '{}' value {} rad is outside the plausible range of a control "
+                    "deflection [-{:.4f}, {:.4f}] rad (+-90 deg){}; expected radians",
+                    at_row(i), column, core::format_exact(v), max_abs_deflection,
+                    max_abs_deflection, degree_slip(v)));
+            }
+        }
     }
     std::vector<std::string> missing;
     for (const std::string_view name : required_modes) {
@@ -404,6 +456,7 @@ MotionState Motion::at(double time, double clamp_tolerance) const {
 // ---------------------------------------------------------------- file
 
 Motion parse_motion(std::string_view text, std::string source) {
+    core::require_utf8_text(text, source);
     const core::CsvTable table = core::parse_csv(text, source);
     const TextLayout layout = scan_layout(text);
     const std::string header = fmt::format("{}:{}", source, layout.header_line);
@@ -483,6 +536,26 @@ std::string motion_to_text(const Motion& motion) {
 
 void write_motion(const std::filesystem::path& file, const Motion& motion) {
     core::write_file_atomic(file, motion_text(motion, file.string()));
+}
+
+void check_mode_limits(const Motion& motion, const std::vector<ModeLimit>& limits,
+                       std::string_view source) {
+    for (const ModeLimit& l : limits) {
+        const int k = motion.find_mode(l.name);
+        if (k < 0) continue;
+        const std::vector<double>& v = motion.modes[static_cast<std::size_t>(k)];
+        for (std::size_t i = 0; i < v.size() && i < motion.t.size(); ++i) {
+            if (v[i] >= l.lower && v[i] <= l.upper) continue;
+            throw InputError(fmt::format(
+                "{}: mode '{}' = {} rad at t = {} s is outside the aircraft's limits [{:.4f}, "
+                "{:.4f}] rad ([{:.1f}, {:.1f}] deg){}",
+                source, l.name, core::format_exact(v[i]), core::format_exact(motion.t[i]), l.lower,
+                l.upper, l.lower * 180.0 / std::numbers::pi, l.upper * 180.0 / std::numbers::pi,
+                std::abs(v[i]) > std::max(std::abs(l.lower), std::abs(l.upper)) * 3.0
+                    ? degree_slip(v[i])
+                    : std::string()));
+        }
+    }
 }
 
 // ---------------------------------------------------------------- forced oscillation

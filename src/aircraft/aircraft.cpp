@@ -179,14 +179,29 @@ void check_inside_length(ConfigMap& m, std::string_view key, double x, double le
     }
 }
 
+// Plausible ranges of the dimensions read (issue 16, defect 12): beyond them a value is a unit
+// slip or a typing error, refused with the range named. The largest aircraft flown set the
+// bounds with a wide margin: Stratolaunch, span 117 m; An-225, wing area 905 m^2, maximum take-off
+// mass 640 t, six engines of 229 kN each (Jane's All the World's Aircraft).
+namespace plausible {
+const NumberSpec length{0.0, 1000.0, true, false, "m"};
+const NumberSpec chord{0.0, 100.0, true, false, "m"};
+const NumberSpec area{0.0, 1e5, true, false, "m^2"};
+const NumberSpec position{-1000.0, 1000.0, false, false, "m"};
+const NumberSpec mass{0.0, 1e7, true, false, "kg"};
+const NumberSpec inertia{0.0, 1e10, true, false, "kg m^2"};
+const NumberSpec product{-1e10, 1e10, false, false, "kg m^2"};
+const NumberSpec thrust{0.0, 1e7, true, false, "N"};
+}  // namespace plausible
+
 // ------------------------------------------------------------------------------------ sections
 
 flightdyn::ReferenceGeometry parse_reference(ConfigMap& r, const geometry::AircraftGeometry& g,
                                              WingRef& w, Eigen::Vector3d& moment_reference) {
     flightdyn::ReferenceGeometry ref;
-    ref.area = r.number("area", NumberSpec::positive("m^2"));
-    ref.span = r.number("span", NumberSpec::positive("m"));
-    ref.chord = r.number("chord", NumberSpec::positive("m"));
+    ref.area = r.number("area", plausible::area);
+    ref.span = r.number("span", plausible::length);
+    ref.chord = r.number("chord", plausible::chord);
     w.explicit_name = r.has("wing");
     w.name = r.string_or("wing", "wing");
     w.wing = g.find_surface(w.name);
@@ -221,7 +236,7 @@ flightdyn::ReferenceGeometry parse_reference(ConfigMap& r, const geometry::Aircr
     }
     if (one_of(r, "moment_reference", "moment_reference_mac_fraction",
                "[x, y, z] in metres, geometry axes", "fraction of the mean aerodynamic chord")) {
-        const auto p = r.vec3("moment_reference", NumberSpec::any("m"));
+        const auto p = r.vec3("moment_reference", plausible::position);
         moment_reference = Eigen::Vector3d(p[0], p[1], p[2]);
         check_inside_length(r, "moment_reference", p[0], g.length, "moment reference point");
     } else {
@@ -240,10 +255,10 @@ flightdyn::MassProperties parse_mass_case(ConfigMap& c, const geometry::Aircraft
                                           const WingRef& w, double chord) {
     flightdyn::MassProperties mp;
     mp.name = c.string("name");
-    mp.mass = c.number("mass", NumberSpec::positive("kg"));
+    mp.mass = c.number("mass", plausible::mass);
     if (one_of(c, "cg", "cg_mac_fraction", "[x, y, z] in metres, geometry axes",
                "fraction of the mean aerodynamic chord")) {
-        const auto p = c.vec3("cg", NumberSpec::any("m"));
+        const auto p = c.vec3("cg", plausible::position);
         mp.cg_geom = Eigen::Vector3d(p[0], p[1], p[2]);
         check_inside_length(c, "cg", p[0], g.length, "centre of gravity");
     } else {
@@ -253,12 +268,12 @@ flightdyn::MassProperties parse_mass_case(ConfigMap& c, const geometry::Aircraft
         mp.cg_geom = mac_point(w, f, chord);
         check_inside_length(c, "cg_mac_fraction", mp.cg_geom.x(), g.length, "centre of gravity");
     }
-    const double ixx = c.number("ixx", NumberSpec::positive("kg m^2"));
-    const double iyy = c.number("iyy", NumberSpec::positive("kg m^2"));
-    const double izz = c.number("izz", NumberSpec::positive("kg m^2"));
-    const double ixz = c.number_or("ixz", 0.0, NumberSpec::any("kg m^2"));
-    const double ixy = c.number_or("ixy", 0.0, NumberSpec::any("kg m^2"));
-    const double iyz = c.number_or("iyz", 0.0, NumberSpec::any("kg m^2"));
+    const double ixx = c.number("ixx", plausible::inertia);
+    const double iyy = c.number("iyy", plausible::inertia);
+    const double izz = c.number("izz", plausible::inertia);
+    const double ixz = c.number_or("ixz", 0.0, plausible::product);
+    const double ixy = c.number_or("ixy", 0.0, plausible::product);
+    const double iyz = c.number_or("iyz", 0.0, plausible::product);
     // Triangle inequalities: each moment is at most the sum of the other two (holds in every
     // frame for a real body, as the diagonal moments are sums of second moments).
     const std::array<std::pair<const char*, double>, 3> m{
@@ -340,7 +355,7 @@ flightdyn::EngineModel parse_engine(ConfigMap& e, const geometry::AircraftGeomet
     }
     if (type == "lapse") {
         eng.type = flightdyn::EngineModel::Type::lapse;
-        eng.static_thrust_sl = e.number("static_thrust", NumberSpec::positive("N"));
+        eng.static_thrust_sl = e.number("static_thrust", plausible::thrust);
         eng.density_exponent =
             e.number_or("density_exponent", 0.7, NumberSpec::range(0.0, 3.0, "-"));
         eng.mach_a1 = e.number_or("mach_a1", -0.3, NumberSpec::range(-5.0, 5.0, "-"));
@@ -379,7 +394,7 @@ flightdyn::EngineModel parse_engine(ConfigMap& e, const geometry::AircraftGeomet
     eng.thrust_angle = e.angle_or("thrust_angle", 0.0,
                                   NumberSpec::range(-core::deg(30.0), core::deg(30.0), "rad"));
     if (e.has("position")) {
-        eng.position = e.vec3("position", NumberSpec::any("m"));
+        eng.position = e.vec3("position", plausible::position);
         eng.has_position = true;
         check_inside_length(e, "position", eng.position[0], g.length,
                             "thrust line's point of action");

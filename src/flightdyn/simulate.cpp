@@ -4,19 +4,25 @@
 
 #include "manta/flightdyn/simulate.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <boost/numeric/odeint.hpp>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "manta/core/config.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/units.hpp"
+#include "manta/core/utf8.hpp"
 #include "manta/core/version.hpp"
 
 namespace manta::flightdyn {
@@ -126,6 +132,7 @@ InputHistory::InputHistory(const Controls<double>& initial) : initial_(initial) 
 
 InputHistory InputHistory::parse(std::string_view csv_text, const std::string& source,
                                  const Controls<double>& initial) {
+    core::require_utf8_text(csv_text, source);
     const core::CsvTable table = core::parse_csv(csv_text, source);
     const int hl = header_line(csv_text);
     // Valid column names: per channel the radian and the degree form (throttle has no degrees).
@@ -202,8 +209,24 @@ InputHistory InputHistory::parse(std::string_view csv_text, const std::string& s
         auto& v = h.values_[c];
         v.resize(n);
         const double scale = in_deg[c] ? core::deg_to_rad : 1.0;
-        for (std::size_t r = 0; r < n; ++r)
-            v[r] = table.rows[r][static_cast<std::size_t>(col[c])] * scale;
+        for (std::size_t r = 0; r < n; ++r) {
+            const double raw = table.rows[r][static_cast<std::size_t>(col[c])];
+            v[r] = raw * scale;
+            // A hinged surface deflects less than 90 deg (issue 16): a larger value is a unit
+            // slip, not a command to saturate silently.
+            if (c != 3 && std::abs(v[r]) > std::numbers::pi / 2.0) {
+                throw InputError(fmt::format(
+                    "{}:{}:{}: column '{}' value {} is outside the plausible range of a control "
+                    "deflection, {}{}",
+                    source, table.row_lines[r], col[c] + 1,
+                    table.columns[static_cast<std::size_t>(col[c])], core::format_exact(raw),
+                    in_deg[c] ? "[-90, 90] deg" : "[-1.5708, 1.5708] rad",
+                    !in_deg[c] && std::abs(raw) <= 360.0
+                        ? fmt::format(" (degrees typed as radians? write the column as '{}_deg')",
+                                      to_string(static_cast<Channel>(c)))
+                        : std::string()));
+            }
+        }
     }
     return h;
 }
@@ -305,6 +328,18 @@ void SimulationOptions::validate() const {
     if (dt > duration)
         throw InputError(fmt::format("simulation option dt = {} s is longer than the duration {} s",
                                      dt, duration));
+    // The step and row counts are integers: a duration of 1e308 s would overflow them.
+    constexpr double max_steps = 1e12;
+    if (duration / dt > max_steps)
+        throw InputError(fmt::format(
+            "simulation options duration = {} s and dt = {} s make {:.3g} steps; expected at "
+            "most {:g} (a shorter duration or a longer step)",
+            duration, dt, duration / dt, max_steps));
+    if (output_interval > 0.0 && duration / output_interval > max_steps)
+        throw InputError(fmt::format(
+            "simulation options duration = {} s and output_interval = {} s make {:.3g} rows; "
+            "expected at most {:g}",
+            duration, output_interval, duration / output_interval, max_steps));
     if (!(progress_interval >= 0.0))
         throw InputError(fmt::format("simulation option progress_interval = {} s; expected >= 0",
                                      progress_interval));
@@ -649,7 +684,7 @@ public:
         counted([&] { (void)FT::rhs(m_, s, sc.controls, &L); });
         EulerState<double> e = FT::to_euler(s);
         // Keep phi and psi continuous between rows (the quaternion form returns them wrapped).
-        if (!result_.rows.empty()) {
+        if (result_.n_rows > 0) {
             e[euler::phi] = unwrap(e[euler::phi], prev_phi_);
             e[euler::psi] = unwrap(e[euler::psi], prev_psi_);
         }
@@ -657,32 +692,38 @@ public:
         prev_psi_ = e[euler::psi];
         const FlightOutputs o = outputs(m_, L, e);
         const Controls<double>& u = sc.controls;
-        result_.rows.push_back({t,
-                                e[euler::x],
-                                e[euler::y],
-                                e[euler::z],
-                                e[euler::phi],
-                                e[euler::theta],
-                                e[euler::psi],
-                                e[euler::V],
-                                e[euler::alpha],
-                                e[euler::beta],
-                                e[euler::p],
-                                e[euler::q],
-                                e[euler::r],
-                                u.elevator,
-                                u.aileron,
-                                u.rudder,
-                                u.throttle,
-                                o.mach,
-                                o.altitude,
-                                o.nz,
-                                o.CL,
-                                o.CD,
-                                o.CY,
-                                o.Cl,
-                                o.Cm,
-                                o.Cn});
+        const std::array<double, 26> row{t,
+                                         e[euler::x],
+                                         e[euler::y],
+                                         e[euler::z],
+                                         e[euler::phi],
+                                         e[euler::theta],
+                                         e[euler::psi],
+                                         e[euler::V],
+                                         e[euler::alpha],
+                                         e[euler::beta],
+                                         e[euler::p],
+                                         e[euler::q],
+                                         e[euler::r],
+                                         u.elevator,
+                                         u.aileron,
+                                         u.rudder,
+                                         u.throttle,
+                                         o.mach,
+                                         o.altitude,
+                                         o.nz,
+                                         o.CL,
+                                         o.CD,
+                                         o.CY,
+                                         o.Cl,
+                                         o.Cm,
+                                         o.Cn};
+        static_assert(row.size() == 26, "trajectory_columns() has 26 columns");
+        if (opt_.row_sink)
+            opt_.row_sink(row);
+        else
+            result_.rows.emplace_back(row.begin(), row.end());
+        ++result_.n_rows;
         result_.final_state = e;
         result_.final_controls = u;
         result_.final_time = t;
@@ -1216,8 +1257,10 @@ SimulationResult simulate(const FlightModel& model_in, const EulerState<double>&
 
 std::vector<SimulationResult> simulate_ensemble(const FlightModel& model_in,
                                                 std::span<const EnsembleCase> cases,
-                                                const SimulationOptions& options) {
-    options.validate();
+                                                const SimulationOptions& options_in) {
+    options_in.validate();
+    SimulationOptions options = options_in;
+    options.row_sink = nullptr;  // the cases keep their rows
     FlightModel model = model_in;
     finalize(model);
     for (const EnsembleCase& c : cases)
@@ -1231,6 +1274,77 @@ std::vector<SimulationResult> simulate_ensemble(const FlightModel& model_in,
 
 void write_trajectory(const std::filesystem::path& file, const SimulationResult& result) {
     core::write_file_atomic(file, core::to_csv(result.columns, result.rows, result.metadata));
+}
+
+// ------------------------------------------------------------------------------- streaming
+
+TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& file) : file_(file) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
+    // A named temporary removed at once: the rows live in an open, nameless file.
+    const std::string spool =
+        fmt::format("{}.rows.tmp{}", file.string(), static_cast<long>(::getpid()));
+    spool_ = ::open(spool.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (spool_ < 0)
+        throw IoError(fmt::format("{}: cannot write the trajectory (spool file {}): {}",
+                                  file.string(), spool, std::strerror(errno)));
+    ::unlink(spool.c_str());
+    buffer_.reserve(std::size_t{1} << 20);
+}
+
+TrajectoryWriter::~TrajectoryWriter() {
+    if (spool_ >= 0) ::close(spool_);
+}
+
+void TrajectoryWriter::row(std::span<const double> values) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (i) buffer_ += ',';
+        buffer_ += core::format_exact(values[i]);
+    }
+    buffer_ += '\n';
+    ++rows_;
+    if (buffer_.size() >= (std::size_t{1} << 20)) flush_buffer();
+}
+
+std::function<void(std::span<const double>)> TrajectoryWriter::sink() {
+    return [this](std::span<const double> values) { row(values); };
+}
+
+void TrajectoryWriter::flush_buffer() {
+    const char* p = buffer_.data();
+    std::size_t left = buffer_.size();
+    while (left > 0) {
+        const ssize_t n = ::write(spool_, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0)
+            throw IoError(fmt::format("{}: cannot write the trajectory rows: {}", file_.string(),
+                                      std::strerror(errno)));
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    buffer_.clear();
+}
+
+void TrajectoryWriter::finish(const SimulationResult& result) {
+    flush_buffer();
+    core::AtomicFileWriter out(file_);
+    // The text of core::to_csv: comments, header, then the rows.
+    out.write(core::to_csv(result.columns, {}, result.metadata));
+    if (::lseek(spool_, 0, SEEK_SET) < 0)
+        throw IoError(fmt::format("{}: cannot read the trajectory rows back: {}", file_.string(),
+                                  std::strerror(errno)));
+    std::string chunk(std::size_t{1} << 20, '\0');
+    for (;;) {
+        const ssize_t n = ::read(spool_, chunk.data(), chunk.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0)
+            throw IoError(fmt::format("{}: cannot read the trajectory rows back: {}",
+                                      file_.string(), std::strerror(errno)));
+        if (n == 0) break;
+        out.write(std::string_view(chunk.data(), static_cast<std::size_t>(n)));
+    }
+    out.commit();  // the spool is read to its end: rows appended later follow these
 }
 
 }  // namespace manta::flightdyn

@@ -852,9 +852,9 @@ LiftingSurface parse_surface(const core::ConfigNode& node, const std::filesystem
     for (std::size_t i = 0; i < seq.size(); ++i) {
         core::ConfigMap sm(seq.element(i));
         SurfaceSection sec;
-        const auto le = sm.vec3("leading_edge", core::NumberSpec::any("m"));
+        const auto le = sm.vec3("leading_edge", core::NumberSpec::range(-1000.0, 1000.0, "m"));
         sec.leading_edge = Eigen::Vector3d(le[0], le[1], le[2]);
-        sec.chord = sm.number("chord", core::NumberSpec::positive("m"));
+        sec.chord = sm.number("chord", core::NumberSpec{0.0, 100.0, true, false, "m"});
         sec.twist = sm.angle_or("twist", 0.0,
                                 core::NumberSpec::range(-core::deg(30.0), core::deg(30.0), "rad"));
         sec.airfoil = parse_airfoil(sm, base_dir);
@@ -888,11 +888,11 @@ LiftingSurface parse_surface(const core::ConfigNode& node, const std::filesystem
 
 Fuselage parse_fuselage(core::ConfigMap& f, double length) {
     Fuselage fus;
-    const auto x = f.numbers("x", 0, core::NumberSpec::any("m"));
+    const auto x = f.numbers("x", 0, core::NumberSpec::range(-1000.0, 1000.0, "m"));
     const auto n = x.size();
-    const auto w = f.numbers("width", n, core::NumberSpec::non_negative("m"));
-    const auto h = f.numbers("height", n, core::NumberSpec::non_negative("m"));
-    const auto z = f.numbers("z_centre", n, core::NumberSpec::any("m"));
+    const auto w = f.numbers("width", n, core::NumberSpec::range(0.0, 100.0, "m"));
+    const auto h = f.numbers("height", n, core::NumberSpec::range(0.0, 100.0, "m"));
+    const auto z = f.numbers("z_centre", n, core::NumberSpec::range(-1000.0, 1000.0, "m"));
     if (n < 2) f.fail("x", "has 1 station", "at least 2 stations (nose and tail)");
     const core::ConfigNode xn = f.node().child("x");
     for (std::size_t i = 0; i < n; ++i) {
@@ -1007,8 +1007,10 @@ ControlSurface parse_control_surface(const core::ConfigNode& node,
 
 AircraftGeometry parse_geometry(core::ConfigMap& map, const std::filesystem::path& base_dir) {
     AircraftGeometry g;
-    g.length = map.number("length", core::NumberSpec::positive("m"));
-    g.height = map.number("height", core::NumberSpec::positive("m"));
+    // Plausible sizes (issue 16): the largest aircraft flown is 117 m in span and 84 m long.
+    const core::NumberSpec size{0.0, 1000.0, true, false, "m"};
+    g.length = map.number("length", size);
+    g.height = map.number("height", size);
     const core::ConfigNode seq = map.sequence("lifting_surfaces");
     for (std::size_t i = 0; i < seq.size(); ++i) {
         const core::ConfigNode el = seq.element(i);

@@ -23,6 +23,17 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// A final condition written as `key` (SI) or `key_deg` (angles): a number (equality), a pair
 /// [lower, upper], `entry` (equal to the entry value) or {entry_offset: [lo, hi]}.
+/// Plausible magnitude of a final or intermediate target in its SI unit (issue 16, defect 12):
+/// an angle compared on the circle within one turn (a heading change of 488 deg was wrapped to
+/// 128 deg), the accumulated roll angle within ten turns (a barrel roll ends near -360 deg), a
+/// speed below 1000 m/s, an altitude below 30 km (as the entry's), a distance within 1000 km.
+double target_limit(std::string_view key, bool angle) {
+    if (angle) return (key == "roll_angle" ? 20.0 : 2.0) * std::numbers::pi;
+    if (key == "speed") return 1000.0;
+    if (key == "altitude") return 30000.0;
+    return 1e6;
+}
+
 Target read_target(ConfigMap& m, std::string_view key, bool angle, const std::string& unit) {
     Target t;
     const std::string deg_key = std::string(key) + "_deg";
@@ -36,13 +47,16 @@ Target read_target(ConfigMap& m, std::string_view key, bool angle, const std::st
     const double factor = in_deg ? kDeg : 1.0;
     const std::string u = in_deg ? "deg" : unit;
     const ConfigNode n = m.child(used);
+    const double limit =
+        angle && in_deg ? (key == "roll_angle" ? 3600.0 : 360.0) : target_limit(key, angle);
+    const NumberSpec spec = NumberSpec::range(-limit, limit, u);
     if (n.is_scalar() && n.to_string() == "entry") {
         t.kind = Target::Kind::entry;
         return t;
     }
     if (n.is_map()) {
         ConfigMap e(n);
-        const auto off = e.numbers("entry_offset", 2, NumberSpec::any(u));
+        const auto off = e.numbers("entry_offset", 2, spec);
         e.finish();
         if (!(off[0] <= off[1])) {
             n.fail("has entry_offset lower above upper", "[lower, upper] with lower <= upper");
@@ -53,7 +67,7 @@ Target read_target(ConfigMap& m, std::string_view key, bool angle, const std::st
         return t;
     }
     if (n.is_sequence()) {
-        const auto v = n.to_doubles(2, NumberSpec::any(u));
+        const auto v = n.to_doubles(2, spec);
         if (!(v[0] <= v[1])) n.fail("has lower above upper", "[lower, upper] with lower <= upper");
         t.kind = Target::Kind::range;
         t.lower = v[0] * factor;
@@ -61,7 +75,7 @@ Target read_target(ConfigMap& m, std::string_view key, bool angle, const std::st
         return t;
     }
     if (n.is_scalar() && !n.is_null()) {
-        const double v = n.to_double(NumberSpec::any(u)) * factor;
+        const double v = n.to_double(spec) * factor;
         t.kind = Target::Kind::range;
         t.lower = v;
         t.upper = v;
@@ -187,6 +201,7 @@ ManoeuvreSpec read(const ConfigNode& root) {
         s.altitude_range =
             pair_or(p, "altitude", s.altitude_range, NumberSpec::range(-500.0, 30000.0, "m"));
         s.speed_range = pair_or(p, "speed", s.speed_range, NumberSpec::range(1.0, 1000.0, "m/s"));
+        if (p.has("mach_max")) s.mach_max = p.number("mach_max", NumberSpec::range(0.01, 5.0, "-"));
         s.east_range = pair_or(p, "east", s.east_range, NumberSpec::any("m"));
         if (!(s.east_range[0] <= 0.0 && s.east_range[1] >= 0.0)) {
             p.fail("east", "does not contain the entry position 0", "[lower <= 0, upper >= 0]");

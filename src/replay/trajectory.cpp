@@ -13,6 +13,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
+#include "manta/core/utf8.hpp"
 
 namespace manta::replay {
 
@@ -63,6 +64,7 @@ std::string Trajectory::meta(const std::string& key, const std::string& fallback
 }
 
 Trajectory parse_trajectory(std::string_view text, std::string source) {
+    core::require_utf8_text(text, source);
     Trajectory tr;
     tr.source = source;
     std::vector<std::string_view> header;

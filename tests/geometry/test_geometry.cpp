@@ -616,9 +616,8 @@ TEST(ParseGeometryErrors, Sections) {
 )",
                             "")),
         {"g.yaml:5", "lifting_surfaces[0].sections", "has 1 entry", "at least 2 sections"});
-    expect_parts(
-        config_error(edited("chord: 2.0", "chord: 0")),
-        {"g.yaml:7", "sections[0].chord", "value '0'", "is out of range", "a number > 0 [m]"});
+    expect_parts(config_error(edited("chord: 2.0", "chord: 0")),
+                 {"g.yaml:7", "sections[0].chord", "value '0'", "is out of range", "(0, 100] [m]"});
     expect_parts(config_error(edited("twist_deg: 2", "twist_deg: 40")),
                  {"g.yaml:8", "twist_deg", "value '40'", "a number in [-30, 30] [deg]"});
     expect_parts(config_error(edited("twist_deg: 2", "twist: 2\n        twist_deg: 2")),
@@ -642,7 +641,7 @@ TEST(ParseGeometryErrors, Fuselage) {
     expect_parts(config_error(edited("x: [0, 5, 10]", "x: [0, 5, 12]")),
                  {"fuselage.x[2]", "value '12'", "outside the aircraft length"});
     expect_parts(config_error(edited("height: [0, 1.4, 0.3]", "height: [0, -1.4, 0.3]")),
-                 {"fuselage.height[1]", "value '-1.4'", "a number >= 0 [m]"});
+                 {"fuselage.height[1]", "value '-1.4'", "[0, 100] [m]"});
 }
 
 TEST(ParseGeometryErrors, ControlSurfaces) {

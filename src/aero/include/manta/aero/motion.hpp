@@ -79,7 +79,10 @@ struct Motion {
 
     /// Check the invariants (the same as for a file): >= 2 samples, strictly increasing finite
     /// times, columns of the same length, finite values, modes elevator, aileron and rudder
-    /// present, mode names unique and made of letters, digits and '_', metadata in range.
+    /// present, mode names unique and made of letters, digits and '_', metadata in range, and
+    /// plausible values: |t| <= 10^6 s, |x_ref|, |y_ref|, |z_ref| <= 10^5 m, |phi|, |theta|,
+    /// |psi| <= 100 rad (unwrapped angles may accumulate turns), |mode| <= pi/2 rad (a larger
+    /// deflection is reported as degrees typed as radians).
     /// InputError in one line naming `source`, the row and the column.
     void validate(std::string_view source = "motion") const;
 
@@ -106,6 +109,19 @@ struct Motion {
 /// Write a motion file atomically (a reader never sees half a file). InputError if the motion is
 /// invalid, IoError if the file cannot be written.
 void write_motion(const std::filesystem::path& file, const Motion& motion);
+
+/// Deflection limits of one control mode of an aircraft [rad].
+struct ModeLimit {
+    std::string name;  ///< mode name without the `mode_` prefix ("elevator")
+    double lower = 0.0;
+    double upper = 0.0;
+};
+
+/// InputError naming `source`, the mode, the value, the time and the limits (in rad and deg)
+/// when a mode of `motion` leaves its aircraft's limits; a value far beyond them is reported as a
+/// likely unit slip (degrees typed as radians). Modes without a limit are not checked.
+void check_mode_limits(const Motion& motion, const std::vector<ModeLimit>& limits,
+                       std::string_view source);
 
 /// The axis of a forced oscillation.
 enum class OscillationAxis {
