@@ -175,6 +175,11 @@ struct SimulationOptions {
     /// reason `numerical_error`) before NumericalError is thrown, so the caller can save it.
     /// `simulate_ensemble` does not call it: the partial result is in its returned vector.
     std::function<void(const SimulationResult&)> on_abort;
+    /// Where `simulate` hands each output row (trajectory_columns() order) as it is computed.
+    /// With a sink, SimulationResult::rows stays empty (SimulationResult::n_rows counts the
+    /// rows), so a run of any length keeps no rows in memory; TrajectoryWriter is such a sink.
+    /// `simulate_ensemble` ignores it (its cases keep their rows).
+    std::function<void(std::span<const double>)> row_sink;
     std::string aircraft_name;  ///< for the trajectory metadata ("" = the model's name)
     std::string mass_case;      ///< for the trajectory metadata ("" = the model's mass case)
 
@@ -197,7 +202,8 @@ enum class EndReason {
 /// A simulated trajectory and its book-keeping.
 struct SimulationResult {
     std::vector<std::string> columns;       ///< trajectory_columns()
-    std::vector<std::vector<double>> rows;  ///< one row per output sample
+    std::vector<std::vector<double>> rows;  ///< one row per output sample (none with a row sink)
+    std::int64_t n_rows = 0;                ///< output rows, also those handed to a row sink
     std::vector<std::string> metadata;      ///< '#' lines (without the '#')
     EulerState<double> final_state;         ///< state at final_time (Euler form, angles unwrapped)
     Controls<double> final_controls;        ///< applied (saturated) controls at final_time
@@ -257,6 +263,36 @@ struct EnsembleCase {
 
 /// Write a result as trajectory CSV ('#' metadata lines, header, rows), atomically.
 void write_trajectory(const std::filesystem::path& file, const SimulationResult& result);
+
+/// A trajectory CSV written as the rows are computed (SimulationOptions::row_sink), the same
+/// text as `write_trajectory` of the whole result: the rows go to a spool file beside `file`
+/// (unlinked at once, so a killed run leaves nothing behind), and `finish` writes the '#'
+/// metadata lines (known only at the end) and the header, then the spooled rows, and renames
+/// the whole over `file` atomically. Memory stays bounded whatever the run's length. IoError
+/// naming the file when it cannot be written.
+class TrajectoryWriter {
+public:
+    explicit TrajectoryWriter(const std::filesystem::path& file);
+    ~TrajectoryWriter();
+    TrajectoryWriter(const TrajectoryWriter&) = delete;
+    TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
+    /// Append one row (trajectory_columns() order).
+    void row(std::span<const double> values);
+    /// A sink for SimulationOptions::row_sink that appends to this writer.
+    [[nodiscard]] std::function<void(std::span<const double>)> sink();
+    /// Write the file: `result`'s metadata and columns, then every row appended so far (it may be
+    /// called again after more rows).
+    void finish(const SimulationResult& result);
+    /// Rows appended so far.
+    [[nodiscard]] std::int64_t rows() const { return rows_; }
+
+private:
+    void flush_buffer();
+    std::filesystem::path file_;
+    int spool_ = -1;
+    std::string buffer_;
+    std::int64_t rows_ = 0;
+};
 
 /// Direction-cosine matrix C_earth_from_body of 3-2-1 Euler angles (Stevens, Lewis & Johnson
 /// 2015, eq. 1.3-20 transposed): v_earth = C * v_body.
