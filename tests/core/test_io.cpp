@@ -1,18 +1,26 @@
-// Tests of src/core/io.cpp: CSV parsing and its located errors, atomic writes, exact number text.
+// Tests of src/core/io.cpp: CSV parsing and its located errors, atomic writes, exact number text,
+// output folders (checked, locked), leftover temporaries; of the message escaping (text.cpp,
+// error.cpp).
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
+
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
+#include "manta/core/text.hpp"
 
 namespace {
 
@@ -189,6 +197,166 @@ TEST(Files, ReadMissingFileAndDirectory) {
         expect_parts(e.what(), {"/nonexistent/file.txt", "cannot open"});
     }
     EXPECT_THROW((void)manta::core::read_file(fs::temp_directory_path()), manta::IoError);
+}
+
+/// A process id that belonged to a process of ours that has ended (and been reaped).
+pid_t dead_pid() {
+    const pid_t pid = ::fork();
+    if (pid == 0) ::_exit(0);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return pid;
+}
+
+/// The IoError message of `f`, or a failure.
+std::string io_error(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const manta::IoError& e) {
+        return e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected IoError, got: " << e.what();
+        return {};
+    }
+    ADD_FAILURE() << "expected IoError, nothing thrown";
+    return {};
+}
+
+TEST(Files, TemporariesOfEndedProcessesAreRemovedByTheNextWriter) {
+    // A process killed while writing leaves NAME.tmpPID; the next writer in the folder removes
+    // it when PID is no longer alive, and keeps a live process's temporary.
+    const fs::path dir = scratch("stale");
+    const std::string dead = std::to_string(dead_pid());
+    const std::string alive = std::to_string(::getppid());
+    for (const std::string& name :
+         std::vector<std::string>{"result.csv.tmp" + dead, "other.csv.tmp" + dead,
+                                  "result.csv.tmp" + alive, "notes.tmpx", "data.csv"})
+        std::ofstream(dir / name) << "x";
+    manta::core::write_file_atomic(dir / "result.csv", "new\n");
+    EXPECT_FALSE(fs::exists(dir / ("result.csv.tmp" + dead)));
+    EXPECT_FALSE(fs::exists(dir / ("other.csv.tmp" + dead)));
+    EXPECT_TRUE(fs::exists(dir / ("result.csv.tmp" + alive)));
+    EXPECT_TRUE(fs::exists(dir / "notes.tmpx"));
+    EXPECT_TRUE(fs::exists(dir / "data.csv"));
+    EXPECT_EQ(manta::core::read_file(dir / "result.csv"), "new\n");
+    fs::remove_all(dir);
+}
+
+TEST(Files, StaleTemporariesBelowARunFolder) {
+    const fs::path dir = scratch("stale_tree");
+    const std::string dead = std::to_string(dead_pid());
+    fs::create_directories(dir / "a" / "b");
+    std::ofstream(dir / "a" / "b" / ("plot.svg.tmp" + dead)) << "x";
+    std::ofstream(dir / ("summary.json.tmp" + dead)) << "x";
+    EXPECT_EQ(manta::core::remove_stale_temporaries(dir, false), 1u);
+    EXPECT_TRUE(fs::exists(dir / "a" / "b" / ("plot.svg.tmp" + dead)));
+    EXPECT_EQ(manta::core::remove_stale_temporaries(dir, true), 1u);
+    EXPECT_FALSE(fs::exists(dir / "a" / "b" / ("plot.svg.tmp" + dead)));
+    EXPECT_EQ(manta::core::remove_stale_temporaries(dir / "missing", true), 0u);
+    fs::remove_all(dir);
+}
+
+TEST(Files, OutputFolderCheckedBeforeWork) {
+    const fs::path dir = scratch("prepare");
+    std::ofstream(dir / "plain") << "x";
+    // Under a file: the option, the path and the system's reason, in one line.
+    std::string msg =
+        io_error([&] { manta::core::prepare_output_folder(dir / "plain" / "run", "--out"); });
+    expect_parts(msg, {"--out", (dir / "plain" / "run").string(), "cannot create the folder",
+                       "Not a directory"});
+    msg = io_error([&] { manta::core::prepare_output_folder(dir / "plain", "--out"); });
+    expect_parts(msg, {"--out", (dir / "plain").string(), "is not a folder"});
+    msg = io_error([&] { manta::core::prepare_output_folder("", "--out"); });
+    expect_parts(msg, {"--out is empty"});
+    msg = io_error([&] { manta::core::prepare_output_file(dir, "--html"); });
+    expect_parts(msg, {"--html", "is a folder"});
+    msg = io_error(
+        [&] { manta::core::prepare_output_file(dir / "plain" / "x" / "r.html", "--html"); });
+    expect_parts(msg, {"--html", (dir / "plain" / "x").string(), "Not a directory"});
+    // A good path: created, nothing left in it.
+    manta::core::prepare_output_folder(dir / "new" / "run", "--out");
+    EXPECT_TRUE(fs::is_directory(dir / "new" / "run"));
+    EXPECT_TRUE(fs::is_empty(dir / "new" / "run"));
+    manta::core::prepare_output_file(dir / "f" / "t.csv", "--out");
+    EXPECT_TRUE(fs::is_directory(dir / "f"));
+    EXPECT_FALSE(fs::exists(dir / "f" / "t.csv"));
+    fs::remove_all(dir);
+}
+
+TEST(RunFolderLock, SecondHolderIsToldWhoHoldsIt) {
+    const fs::path dir = scratch("lock");
+    int ready[2];
+    ASSERT_EQ(::pipe(ready), 0);
+    const pid_t holder = ::fork();
+    ASSERT_GE(holder, 0);
+    if (holder == 0) {
+        ::close(ready[0]);
+        const manta::core::RunFolderLock lock(dir, "tables");
+        (void)!::write(ready[1], "x", 1);
+        for (;;) ::pause();
+    }
+    ::close(ready[1]);
+    char c = 0;
+    ASSERT_EQ(::read(ready[0], &c, 1), 1);
+    ::close(ready[0]);
+    const std::string msg = io_error([&] { const manta::core::RunFolderLock l(dir, "cfd"); });
+    expect_parts(msg, {dir.string() + " is in use by manta tables (pid " + std::to_string(holder) +
+                           ") since 20",
+                       "--out"});
+    // The holder is killed: the kernel releases its lock and the next command takes it.
+    ::kill(holder, SIGKILL);
+    int status = 0;
+    ::waitpid(holder, &status, 0);
+    {
+        const manta::core::RunFolderLock lock(dir, "cfd");
+        const std::string record = manta::core::read_file(dir / ".manta.lock");
+        EXPECT_NE(record.find("pid " + std::to_string(::getpid()) + "\n"), std::string::npos)
+            << record;
+        EXPECT_NE(record.find("command cfd\n"), std::string::npos) << record;
+        // Within one process too, a second lock on the folder is refused.
+        EXPECT_THROW(manta::core::RunFolderLock(dir, "report", "--figures"), manta::IoError);
+    }
+    // Released when the holder goes out of scope.
+    EXPECT_NO_THROW(manta::core::RunFolderLock(dir, "tables"));
+    fs::remove_all(dir);
+}
+
+TEST(RunFolderLock, UnwritableFolderNamed) {
+    const fs::path dir = scratch("lock_bad");
+    std::ofstream(dir / "plain") << "x";
+    const std::string msg =
+        io_error([&] { const manta::core::RunFolderLock l(dir / "plain" / "run", "tables"); });
+    expect_parts(msg, {"--out", (dir / "plain" / "run").string(), "Not a directory"});
+    fs::remove_all(dir);
+}
+
+// ------------------------------------------------------------------------------------ messages
+
+TEST(Printable, EscapesControlBytesAndKeepsUtf8) {
+    using manta::core::printable;
+    EXPECT_EQ(printable("plain text, 1.5 \\ back"), "plain text, 1.5 \\ back");
+    EXPECT_EQ(printable("a\x1b[31mb\rc\nd\te"), "a\\x1b[31mb\\x0dc\\x0ad\\x09e");
+    EXPECT_EQ(printable(std::string("x\0y", 3)), "x\\x00y");
+    EXPECT_EQ(printable("del\x7f"), "del\\x7f");
+    EXPECT_EQ(printable("\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"),
+              "\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80");  // été € and an emoji
+    EXPECT_EQ(printable("\xc2\x9b"
+                        "2J"),
+              "\\xc2\\x9b2J");                                // C1 CSI
+    EXPECT_EQ(printable("\xff\xc3"), "\\xff\\xc3");           // not UTF-8, cut off
+    EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a surrogate
+    EXPECT_EQ(printable("\xc0\xaf"), "\\xc0\\xaf");           // overlong '/'
+    const std::string once = printable("\x1b]0;title\x07");
+    EXPECT_EQ(printable(once), once);
+}
+
+TEST(Printable, EveryErrorMessageIsEscaped) {
+    const manta::InputError e(std::string("value 'a\x1b[2J\0b' at line 3", 25));
+    EXPECT_STREQ(e.what(), "value 'a\\x1b[2J\\x00b' at line 3");
+    const std::string msg =
+        input_error([] { (void)parse_csv("t,x\n0,\x1b[31mred\r1\n", "in.csv"); });
+    EXPECT_EQ(msg.find('\x1b'), std::string::npos) << msg;
+    expect_parts(msg, {"in.csv:2", "'\\x1b[31mred\\x0d1'"});
 }
 
 // ------------------------------------------------------------------------------------ exact text

@@ -2,7 +2,9 @@
 /// @file error.hpp
 /// MANTA's one error hierarchy. Library code throws; the CLI catches at the top, prints one
 /// line and exits with 2 (bad input: ConfigError, InputError, IoError) or 1 (failed computation:
-/// ConvergenceError, NumericalError).
+/// ConvergenceError, NumericalError). A message quotes input text as it is given; the control
+/// bytes in it are escaped when the error is made (core::printable), so no message carries a raw
+/// ESC, carriage return or NUL to the terminal.
 
 #include <stdexcept>
 #include <string>
@@ -12,7 +14,9 @@ namespace manta {
 /// Base of every error MANTA throws on purpose.
 class Error : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    /// The message, its control bytes escaped as \xNN (core::printable).
+    explicit Error(const std::string& message);
+    explicit Error(const char* message);
     /// Process exit code the CLI uses for this error: 2 for bad input, 1 for a failed computation.
     [[nodiscard]] virtual int exit_code() const noexcept { return 1; }
 };
