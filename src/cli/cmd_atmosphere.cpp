@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/core/error.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
@@ -12,7 +13,8 @@ void add_atmosphere(CLI::App& app, Action& action) {
     auto geopotential = std::make_shared<bool>(false);
     auto json = std::make_shared<bool>(false);
     cmd->add_option("--altitude", *altitude, "Altitude [m] (geometric unless --geopotential)")
-        ->required();
+        ->required()
+        ->check(cli::altitude());
     cmd->add_flag("--geopotential", *geopotential, "Read --altitude as geopotential altitude [m']");
     cmd->add_flag("--json", *json, "Print one JSON object (SI units)");
     cmd->callback([=, &action] {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
@@ -84,6 +85,21 @@ int run_cfd(const CfdArgs& a) {
     setup.solver = cfg.solver;
     if (a.max_iterations) setup.solver.max_iterations = *a.max_iterations;
 
+    // Rank 0 writes --out: it checks and locks the folder before the mesh is read (a second
+    // `manta cfd` on the same folder stops here with exit 2; every process stops with it).
+    std::optional<core::RunFolderLock> lock;
+    {
+        std::exception_ptr lock_error;
+        if (root) {
+            try {
+                lock.emplace(a.out, "cfd");
+            } catch (...) {
+                lock_error = std::current_exception();
+            }
+        }
+        parallel::rethrow_root_error(lock_error, comm);
+    }
+
     // Rank 0 reads the mesh and distributes it.
     const auto t_read = clock::now();
     // Nodes renumbered in reverse Cuthill-McKee order (locality for the implicit solver);
@@ -115,7 +131,6 @@ int run_cfd(const CfdArgs& a) {
     euler::SteadySolver solver(domain, comm, setup);
 
     const std::filesystem::path out(a.out);
-    if (root) std::filesystem::create_directories(out);
     const std::filesystem::path restart_file = out / "restart.bin";
     const std::string fingerprint =
         euler::mesh_fingerprint(local.mesh, local.global_node, local.n_owned, comm);
@@ -346,19 +361,22 @@ void add_cfd(CLI::App& app, Action& action) {
     cmd->add_option("--mesh", a->mesh, "Mesh file (.su2, .su2.gz, .msh, .cgns; docs/mesh.md)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--mach", a->mach, "Free-stream Mach number (or flow.mach in --config)");
-    cmd->add_option("--alpha-deg", a->alpha_deg, "Angle of attack [deg] (default 0)");
-    cmd->add_option("--beta-deg", a->beta_deg, "Sideslip [deg], wind from the right (default 0)");
+    cmd->add_option("--mach", a->mach, "Free-stream Mach number (or flow.mach in --config)")
+        ->check(real_positive(10.0));
+    cmd->add_option("--alpha-deg", a->alpha_deg, "Angle of attack [deg] (default 0)")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
+    cmd->add_option("--beta-deg", a->beta_deg, "Sideslip [deg], wind from the right (default 0)")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
     cmd->add_option("--config", a->config,
                     "Configuration YAML: marker roles, reference values, numerics "
                     "(docs/formats.md#cfd-configuration)")
         ->check(CLI::ExistingFile);
-    cmd->add_option("--out", a->out, "Output folder")->required();
+    cmd->add_option("--out", a->out, "Output folder")->required()->check(output_path());
     cmd->add_option("--max-iterations", a->max_iterations,
                     "Iteration limit (overrides solver.max_iterations)")
-        ->check(CLI::Range(1, 1000000000));
+        ->check(integer_in(1, 1000000000));
     cmd->add_option("--order", a->order, "Spatial order 1 or 2 (overrides numerics.order)")
-        ->check(CLI::Range(1, 2));
+        ->check(integer_in(1, 2));
     cmd->add_option("--initial", a->initial,
                     "Start from this restart file (another run's restart.bin on the same mesh)")
         ->check(CLI::ExistingFile);

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <thread>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "embedded_inputs.hpp"
 #include "manta/aero/database.hpp"
@@ -241,7 +242,9 @@ void add_demo(CLI::App& app, Action& action) {
         bool json = false;
     };
     auto o = std::make_shared<Opts>();
-    cmd->add_option("--out", o->out, "Run folder (resumed when it exists)")->capture_default_str();
+    cmd->add_option("--out", o->out, "Run folder (resumed when it exists)")
+        ->capture_default_str()
+        ->check(output_path());
     cmd->add_option("--aircraft", o->aircraft,
                     "Aircraft file instead of the embedded Ranger 2000 (its campaign and "
                     "manoeuvres are the Ranger's)")
@@ -255,14 +258,14 @@ void add_demo(CLI::App& app, Action& action) {
                     "manoeuvre files (default: the paper's three)")
         ->delimiter(',');
     cmd->add_option("--jobs", o->jobs, "Stages run at once (default: one per hardware thread)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1024));
     cmd->add_flag("--quick", o->quick,
                   "Smoke run: the level turn instead of the paper's manoeuvres (under a minute)");
     cmd->add_flag("--restart", o->restart, "Discard the run folder's results and start again");
     cmd->add_option("--replay-dt", o->replay_dt,
                     "Time step of the replays [s] (default: chosen "
                     "by manta replay from the manoeuvre)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(real_in(0.0, 1.0, "s"));
     cmd->add_flag("--json", o->json, "Print the run summary (run.json) as one JSON object");
     cmd->callback([o, &action] {
         action = [o]() -> int {
@@ -293,7 +296,8 @@ void add_demo(CLI::App& app, Action& action) {
             const int hw = static_cast<int>(std::thread::hardware_concurrency());
             const int jobs = o->jobs > 0 ? o->jobs : std::max(1, hw);
 
-            fs::create_directories(out);
+            // The demo's own folder, locked while it runs (its stages lock their sub-folders).
+            const core::RunFolderLock lock(out, "demo");
             const Markers markers{out / ".demo"};
             if (o->restart) {
                 markers.clear();

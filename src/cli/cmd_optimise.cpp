@@ -12,11 +12,13 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
@@ -253,8 +255,9 @@ int run_manoeuvre(const OptimiseOptions& o) {
     so.ipopt_options = ipopt_pairs(o.ipopt);
     so.progress = progress_printer(o.progress);
     const fs::path out = o.out;
+    std::optional<core::RunFolderLock> lock;
     if (!out.empty()) {
-        fs::create_directories(out);
+        lock.emplace(out, "optimise");
         so.failure_csv = out / "best_iterate.csv";
     }
     const manoeuvres::ManoeuvreResult r = manoeuvres::fly(problem, so);
@@ -348,9 +351,9 @@ void add_optimise(CLI::App& app, Action& action) {
     problem_opt->excludes(manoeuvre_opt);
     auto* nodes_opt = cmd->add_option("--nodes", o->nodes,
                                       "LGL points per segment (default 40, or the manoeuvre's)")
-                          ->check(CLI::Range(2, 400));
+                          ->check(integer_in(2, 400));
     cmd->add_option("--segments", o->segments, "Number of equal segments, hp (default 1)")
-        ->check(CLI::Range(1, 200));
+        ->check(integer_in(1, 200));
     cmd->add_flag("--free-breaks", o->free_breaks, "Segment breaks are decision variables");
     cmd->add_flag("--refine", o->refine,
                   "After solving, break the mesh where a control jumps and re-solve (hp)");
@@ -359,18 +362,19 @@ void add_optimise(CLI::App& app, Action& action) {
             ->check(CLI::IsMember({"exact", "limited-memory"}));
     auto* tol_opt =
         cmd->add_option("--tol", o->tolerance, "IPOPT tolerance (default 1e-8, or the manoeuvre's)")
-            ->check(CLI::PositiveNumber);
+            ->check(real_positive(1.0));
     cmd->add_option("--max-iter", o->max_iterations, "IPOPT iteration limit (default 3000)")
-        ->check(CLI::Range(1, 1000000));
+        ->check(integer_in(1, 1000000));
     cmd->add_option("--atmosphere", o->atmosphere,
                     "min-time-to-climb atmosphere: us1976 (default) or troposphere-only")
         ->check(CLI::IsMember({"us1976", "troposphere-only"}));
-    cmd->add_option("--out", o->out, "Write solution.csv and summary.json into this folder");
+    cmd->add_option("--out", o->out, "Write solution.csv and summary.json into this folder")
+        ->check(output_path());
     cmd->add_flag("--json", o->json, "Print one JSON object (SI units unless the name says)");
     cmd->add_flag("--progress", o->progress, "Print a progress line per IPOPT iteration (stderr)");
     cmd->add_option("--ipopt-print-level", o->ipopt_print_level,
                     "IPOPT's own console output, 0 (default) to 12")
-        ->check(CLI::Range(0, 12));
+        ->check(integer_in(0, 12));
     cmd->add_option("--ipopt", o->ipopt, "Further IPOPT option KEY=VALUE (repeatable)");
     cmd->callback([o, &action, nodes_opt, hessian_opt, tol_opt, problem_opt, aircraft_opt] {
         o->nodes_given = nodes_opt->count() > 0;
@@ -403,7 +407,11 @@ void add_optimise(CLI::App& app, Action& action) {
                 };
             }
             const fs::path out = o->out;
-            if (!out.empty()) so.failure_csv = out / "best_iterate.csv";
+            std::optional<core::RunFolderLock> lock;
+            if (!out.empty()) {
+                lock.emplace(out, "optimise");
+                so.failure_csv = out / "best_iterate.csv";
+            }
             optimal::Solution s = optimal::solve(*c.model, mesh, c.guess, so);
             if (o->refine && s.converged()) {
                 const optimal::Mesh refined = optimal::refine_at_control_jumps(s, o->nodes);
@@ -420,7 +428,6 @@ void add_optimise(CLI::App& app, Action& action) {
             }
             const nlohmann::json j = summary(*o, s, c, mesh);
             if (!out.empty()) {
-                fs::create_directories(out);
                 if (s.converged()) optimal::write_csv(s, out / "solution.csv");
                 core::write_file_atomic(out / "summary.json", j.dump(2) + '\n');
             }

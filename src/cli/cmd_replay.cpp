@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -14,10 +15,12 @@
 
 #include <unistd.h>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aero/database.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
 #include "manta/replay/replay.hpp"
 #include "manta/replay/trajectory.hpp"
 #include "manta/vlm/source.hpp"
@@ -88,7 +91,7 @@ int run_replay_command(const ReplayArgs& a) {
                     try {
                         std::size_t used = 0;
                         const double v = std::stod(t.substr(eq + 1), &used);
-                        ok = used == t.size() - eq - 1 && v > 0.0;
+                        ok = used == t.size() - eq - 1 && v > 0.0 && std::isfinite(v);
                         s.tolerances[k] = v;
                     } catch (const std::exception&) {
                         ok = false;
@@ -102,6 +105,8 @@ int run_replay_command(const ReplayArgs& a) {
     }
     s.extra_fingerprint = fmt::format("n_chord={} strip_width={} wake_length={}", a.n_chord,
                                       a.strip_width, a.wake_length);
+    // The replay writes --out (checkpoints included) from here on: one command at a time.
+    const core::RunFolderLock lock(a.out, "replay");
 
     vlm::LatticeDensity density;
     density.n_chord = a.n_chord;
@@ -179,31 +184,31 @@ void add_replay(CLI::App& app, Action& action) {
     cmd->add_option("--aircraft", a->aircraft, "Aircraft file (geometry, reference, aero model)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--out", a->out, "Output folder")->required();
+    cmd->add_option("--out", a->out, "Output folder")->required()->check(output_path());
     cmd->add_option("--tables", a->tables,
                     "Aero database (database.yaml or a `manta tables` folder; default: the "
                     "aircraft file's aero model)")
         ->check(CLI::ExistingPath);
     cmd->add_option("--dt", a->dt, "Time step [s] (default: from the manoeuvre's time scales)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_positive(1.0, "s"));
     cmd->add_option("--n-chord", a->n_chord,
                     fmt::format("Chordwise vortices per strip (default {})", replay_n_chord))
-        ->check(CLI::Range(1, 100));
+        ->check(integer_in(1, 100));
     cmd->add_option("--strip-width", a->strip_width,
                     fmt::format("Strip width / span (default {})", replay_strip_width))
-        ->check(CLI::Range(1e-4, 0.5));
+        ->check(real_in(1e-4, 0.5));
     cmd->add_option("--wake-length", a->wake_length, "Wake kept [reference chords] (default 10)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_positive(1000.0, "chords"));
     cmd->add_option("--threads", a->threads, "Worker threads (default 0: all)")
-        ->check(CLI::Range(0, 256));
+        ->check(integer_in(0, 256));
     cmd->add_option("--tolerance", a->tolerances,
                     "Flag tolerance NAME=VALUE (CL CD CY Cl Cm Cn; defaults in docs/replay.md)");
     cmd->add_option("--checkpoint-steps", a->checkpoint_steps,
                     "Checkpoint every N steps (default 0: by time only)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in(0, 1000000000));
     cmd->add_option("--checkpoint-seconds", a->checkpoint_seconds,
                     "Checkpoint every T seconds of wall time (default 30; 0: never by time)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(real_in(0.0, 1e6, "s"));
     cmd->add_flag("--restart", a->restart, "Discard a checkpoint in --out and start afresh");
     cmd->add_flag("--keep-checkpoint", a->keep_checkpoint, "Keep --out/checkpoint when done");
     cmd->add_flag("--no-viscous", a->no_viscous, "Leave out the viscous drag estimate");

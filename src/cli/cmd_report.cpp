@@ -6,9 +6,12 @@
 #include <fmt/ranges.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "checks.hpp"
 #include "commands.hpp"
+#include "manta/core/io.hpp"
 #include "manta/report/report.hpp"
 
 namespace manta::cli {
@@ -28,9 +31,12 @@ void add_report(CLI::App& app, Action& action) {
                     "Run directory (manta demo --out), or a tables, optimise "
                     "or replay output directory")
         ->required();
-    cmd->add_option("--html", *html, "Write the report to this HTML file")->required();
+    cmd->add_option("--html", *html, "Write the report to this HTML file")
+        ->required()
+        ->check(output_path());
     cmd->add_option("--figures", *figures,
-                    "Also write every figure as SVG and its curves as CSV into this folder");
+                    "Also write every figure as SVG and its curves as CSV into this folder")
+        ->check(output_path());
     cmd->add_flag("--png", *png,
                   "With --figures: also render each SVG as PNG with headless chromium (a few "
                   "seconds per figure; skipped with a note when chromium is absent)");
@@ -42,7 +48,12 @@ void add_report(CLI::App& app, Action& action) {
             report::ReportOptions opt = *o;
             opt.run_dir = *run_dir;
             opt.html = *html;
-            if (!figures->empty()) opt.figures_dir = *figures;
+            core::prepare_output_file(*html, "--html");
+            std::optional<core::RunFolderLock> lock;
+            if (!figures->empty()) {
+                lock.emplace(*figures, "report", "--figures");
+                opt.figures_dir = *figures;
+            }
             opt.png = *png;
             const report::ReportResult r = report::make_report(opt);
             if (*json) {

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/config.hpp"
@@ -160,6 +161,7 @@ void install_progress(flightdyn::SimulationOptions& opt, bool& printed) {
 /// A single run: --inputs (optional), --speed, --altitude, --out.
 int run_single(const SimulateArgs& a) {
     flightdyn::SimulationOptions opt = make_options(a);  // bad options fail before any reading
+    core::prepare_output_file(a.out, "--out");           // and an unwritable --out too
 
     const auto def = aircraft::load_aircraft(a.ac.aircraft);
     const flightdyn::FlightModel model = def.flight_model(a.ac.mass_case);
@@ -175,16 +177,19 @@ int run_single(const SimulateArgs& a) {
 
     bool printed = false;
     if (!a.json) install_progress(opt, printed);
+    // Rows go to the file as they are computed (no trajectory is kept in memory).
+    flightdyn::TrajectoryWriter writer(a.out);
+    opt.row_sink = writer.sink();
     const std::string out = a.out;
-    opt.on_abort = [out](const flightdyn::SimulationResult& partial) {
-        flightdyn::write_trajectory(out, partial);
+    opt.on_abort = [out, &writer](const flightdyn::SimulationResult& partial) {
+        writer.finish(partial);
         std::fprintf(stderr, "manta: partial trajectory up to t = %g s saved to %s\n",
                      partial.final_time, out.c_str());
     };
 
     const flightdyn::SimulationResult res = flightdyn::simulate(model, trim.state, inputs, opt);
     if (printed && ::isatty(STDERR_FILENO) != 0) std::fprintf(stderr, "\n");
-    flightdyn::write_trajectory(a.out, res);
+    writer.finish(res);
 
     if (a.json) {
         nlohmann::json j;
@@ -213,7 +218,7 @@ int run_single(const SimulateArgs& a) {
         j["saturation"] = saturation_json(res.saturation);
         j["out_of_table"] = out_of_range_json(res.out_of_range);
         j["output_file"] = a.out;
-        j["rows"] = res.rows.size();
+        j["rows"] = res.n_rows;
         print_json(j);
         return 0;
     }
@@ -265,7 +270,7 @@ int run_single(const SimulateArgs& a) {
             start = nl + 1;
         }
     }
-    fmt::print("  output  {} ({} rows)\n", a.out, res.rows.size());
+    fmt::print("  output  {} ({} rows)\n", a.out, res.n_rows);
     return 0;
 }
 
@@ -496,6 +501,7 @@ int run_ensemble(const SimulateArgs& a) {
             "--cases needs --out-dir DIR (where DIR/<name>.csv per case and DIR/summary.json go)");
     flightdyn::SimulationOptions opt = make_options(a);
     const std::vector<CaseRow> rows = read_cases(a.cases);  // errors before the aircraft is read
+    const core::RunFolderLock lock(a.out_dir, "simulate", "--out-dir");
 
     const auto def = aircraft::load_aircraft(a.ac.aircraft);
     const flightdyn::FlightModel model = def.flight_model(a.ac.mass_case);
@@ -656,16 +662,22 @@ void add_simulate(CLI::App& app, Action& action) {
     a->inputs_opt = cmd->add_option("--inputs", a->inputs,
                                     "Control-input CSV (default: hold the trim controls)")
                         ->check(CLI::ExistingFile);
-    cmd->add_option("--duration", a->duration, "Simulated time [s]")->required();
+    cmd->add_option("--duration", a->duration, "Simulated time [s]")
+        ->required()
+        ->check(real_positive(range::max_duration, "s"));
     a->speed_opt =
         cmd->add_option("--speed", a->speed, "Initial true airspeed [m/s] (trimmed level flight)")
-            ->capture_default_str();
+            ->capture_default_str()
+            ->check(real_positive(range::max_speed, "m/s"));
     a->altitude_opt = cmd->add_option("--altitude", a->altitude, "Initial altitude [m] (geometric)")
-                          ->capture_default_str();
+                          ->capture_default_str()
+                          ->check(altitude());
     cmd->add_option("--dt", a->dt, "Time step [s] (rk4 step; dopri5 initial step)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(real_positive(range::max_time_step, "s"));
     cmd->add_option("--output-interval", a->output_interval,
-                    "Interval between trajectory rows [s] (default: every step, dt)");
+                    "Interval between trajectory rows [s] (default: every step, dt)")
+        ->check(real_in(0.0, range::max_duration, "s"));
     cmd->add_option(
            "--integrator", a->integrator,
            "rk4 (fixed step, classical Runge-Kutta) or dopri5 (adaptive Dormand-Prince 5(4))")
@@ -675,16 +687,22 @@ void add_simulate(CLI::App& app, Action& action) {
                     "singular at "
                     "theta = +-90 deg)")
         ->capture_default_str();
-    cmd->add_option("--rtol", a->rtol, "dopri5 relative tolerance")->capture_default_str();
+    cmd->add_option("--rtol", a->rtol, "dopri5 relative tolerance")
+        ->capture_default_str()
+        ->check(real_positive(1.0));
     cmd->add_option("--atol", a->atol, "dopri5 absolute tolerance (SI units, radians)")
-        ->capture_default_str();
-    a->out_opt = cmd->add_option("--out", a->out, "Trajectory CSV to write")->capture_default_str();
+        ->capture_default_str()
+        ->check(real_positive(1e3));
+    a->out_opt = cmd->add_option("--out", a->out, "Trajectory CSV to write")
+                     ->capture_default_str()
+                     ->check(output_path());
     cmd->add_option("--cases", a->cases,
                     "Ensemble: cases CSV (name,speed,altitude[,inputs][,climb_angle_deg]); "
                     "excludes --inputs, --out, --speed, --altitude")
         ->check(CLI::ExistingFile);
     cmd->add_option("--out-dir", a->out_dir,
-                    "Ensemble output folder: <name>.csv per case and summary.json");
+                    "Ensemble output folder: <name>.csv per case and summary.json")
+        ->check(output_path());
     cmd->add_flag("--json", a->json,
                   "Print one JSON object (SI units and radians; *_deg keys in degrees)");
     cmd->callback([a, &action] {

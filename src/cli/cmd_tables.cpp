@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
@@ -201,6 +202,8 @@ int run_tables(const TablesArgs& a) {
         throw InputError("tables: --restart and --accept-changed-source exclude each other");
     const tables::Campaign campaign = tables::read_campaign(a.campaign);
     const std::filesystem::path out(a.out);
+    // One command at a time in a run folder: a second one would mix its samples into the store.
+    const core::RunFolderLock lock(out, "tables");
 
     // The source: built here, so the tables module never depends on a solver.
     std::unique_ptr<aero::AeroSource> source;
@@ -384,16 +387,17 @@ void add_tables(CLI::App& app, Action& action) {
         ->required()
         ->check(CLI::ExistingFile);
     cmd->add_option("--out", a->out, "Output folder (also holds the sample store samples.sqlite)")
-        ->required();
+        ->required()
+        ->check(output_path());
     cmd->add_option("--jobs", a->jobs, "Samples evaluated at once (default 1)")
-        ->check(CLI::Range(1, 1024));
+        ->check(integer_in(1, 1024));
     cmd->add_flag("--restart", a->restart, "Delete the sample store and start from scratch");
     cmd->add_flag("--accept-changed-source", a->accept_changed_source,
                   "Reuse stored samples although the source fingerprint changed");
     cmd->add_flag("--retry-failed", a->retry_failed, "Evaluate failed samples again");
     cmd->add_option("--progress-interval", a->progress_interval,
                     "Seconds between progress lines on stderr (default 2)")
-        ->check(CLI::Range(0.0, 3600.0));
+        ->check(real_in(0.0, 3600.0, "s"));
     cmd->add_flag("--json", a->json, "Print the summary as one JSON object");
     cmd->callback([a, &action] { action = [a]() -> int { return run_tables(*a); }; });
 }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
@@ -72,13 +73,15 @@ void add_trim(CLI::App& app, Action& action) {
     add_aircraft_options(cmd, a->ac);
     add_required_flight_condition(cmd, a->fc);
     auto* climb = cmd->add_option("--climb-angle-deg", a->climb_angle_deg,
-                                  "Flight-path angle [deg], + climbing (default 0)");
-    auto* turn =
-        cmd->add_option("--turn-rate-deg-s", a->turn_rate_deg_s,
-                        "Turn rate [deg/s], + turning right (coordinated turn; default 0)");
+                                  "Flight-path angle [deg], + climbing (default 0)")
+                      ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
+    auto* turn = cmd->add_option("--turn-rate-deg-s", a->turn_rate_deg_s,
+                                 "Turn rate [deg/s], + turning right (coordinated turn; default 0)")
+                     ->check(real_in(-360.0, 360.0, "deg/s"));
     climb->excludes(turn);
     turn->excludes(climb);
-    cmd->add_option("--heading-deg", a->heading_deg, "Heading psi [deg] (default 0)");
+    cmd->add_option("--heading-deg", a->heading_deg, "Heading psi [deg] (default 0)")
+        ->check(real_in(-360.0, 360.0, "deg"));
     cmd->add_flag("--ignore-limits", a->ignore_limits,
                   "Report control-limit and table-range violations instead of failing");
     cmd->add_flag("--json", a->json,

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
@@ -256,28 +257,40 @@ void add_vlm(CLI::App& app, Action& action) {
     cmd->add_option("--aircraft", a->aircraft, "Aircraft file: MANTA YAML or AVL geometry (.avl)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--alpha-deg", a->alpha_deg, "Angle of attack [deg] (default 0)");
-    cmd->add_option("--beta-deg", a->beta_deg, "Sideslip angle [deg] (default 0)");
+    cmd->add_option("--alpha-deg", a->alpha_deg, "Angle of attack [deg] (default 0)")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
+    cmd->add_option("--beta-deg", a->beta_deg, "Sideslip angle [deg] (default 0)")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
     cmd->add_option("--mach", a->mach, "Mach number (default: the AVL file's, else 0)")
-        ->check(CLI::Range(0.0, 0.95));
-    cmd->add_option("--p-hat", a->p_hat, "Roll rate p b / 2V (body axes, default 0)");
-    cmd->add_option("--q-hat", a->q_hat, "Pitch rate q c / 2V (default 0)");
-    cmd->add_option("--r-hat", a->r_hat, "Yaw rate r b / 2V (body axes, default 0)");
-    cmd->add_option("--elevator-deg", a->elevator_deg, "Elevator [deg], trailing edge down +");
-    cmd->add_option("--aileron-deg", a->aileron_deg, "Aileron [deg], left trailing edge down +");
-    cmd->add_option("--rudder-deg", a->rudder_deg, "Rudder [deg], trailing edge left +");
+        ->check(real_in(0.0, 0.95));
+    cmd->add_option("--p-hat", a->p_hat, "Roll rate p b / 2V (body axes, default 0)")
+        ->check(real_in(-1.0, 1.0));
+    cmd->add_option("--q-hat", a->q_hat, "Pitch rate q c / 2V (default 0)")
+        ->check(real_in(-1.0, 1.0));
+    cmd->add_option("--r-hat", a->r_hat, "Yaw rate r b / 2V (body axes, default 0)")
+        ->check(real_in(-1.0, 1.0));
+    cmd->add_option("--elevator-deg", a->elevator_deg, "Elevator [deg], trailing edge down +")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
+    cmd->add_option("--aileron-deg", a->aileron_deg, "Aileron [deg], left trailing edge down +")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
+    cmd->add_option("--rudder-deg", a->rudder_deg, "Rudder [deg], trailing edge left +")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
     cmd->add_option("--control", a->controls, "Any control by name: NAME=DEG (repeatable)");
     cmd->add_option("--altitude", a->altitude,
-                    "Altitude [m] for the Reynolds number of the viscous drag (default 0)");
-    cmd->add_option("--speed", a->speed, "True airspeed [m/s] (default: Mach x speed of sound)");
+                    "Altitude [m] for the Reynolds number of the viscous drag (default 0)")
+        ->check(altitude());
+    cmd->add_option("--speed", a->speed, "True airspeed [m/s] (default: Mach x speed of sound)")
+        ->check(real_positive(range::max_speed, "m/s"));
     cmd->add_flag("--no-viscous", a->no_viscous, "No viscous drag build-up");
     cmd->add_option("--n-chord", a->n_chord, "Chordwise vortices per strip (MANTA files)")
-        ->check(CLI::Range(1, 100));
+        ->check(integer_in(1, 100));
     cmd->add_option("--strip-width", a->strip_width,
                     "Strip width as a fraction of the span (MANTA files)")
-        ->check(CLI::Range(1e-4, 0.5));
-    cmd->add_option("--vtu", a->vtu, "Write the panel loads as VTU (ParaView)");
-    cmd->add_option("--span-csv", a->span_csv, "Write the span loading as CSV");
+        ->check(real_in(1e-4, 0.5));
+    cmd->add_option("--vtu", a->vtu, "Write the panel loads as VTU (ParaView)")
+        ->check(output_path());
+    cmd->add_option("--span-csv", a->span_csv, "Write the span loading as CSV")
+        ->check(output_path());
     cmd->add_flag("--json", a->json, "Print one JSON object (SI units, radians)");
     cmd->callback([a, &action] {
         action = [a]() -> int {

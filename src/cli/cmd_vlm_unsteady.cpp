@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aero/motion.hpp"
 #include "manta/core/error.hpp"
@@ -69,7 +70,7 @@ void run_unsteady(const UnsteadyArgs& a) {
     o.start = a.impulsive ? vlm::StartMode::impulsive : vlm::StartMode::steady;
     o.wake = a.free_wake ? vlm::WakeModel::free : vlm::WakeModel::prescribed;
     const std::filesystem::path out(a.out);
-    std::filesystem::create_directories(out);
+    const core::RunFolderLock lock(out, "vlm-unsteady");
     vlm::UnsteadySolver solver(in.model, vlm::build_lattice(in.model), o);
     const auto t0 = clock::now();
     auto last = t0;
@@ -206,22 +207,22 @@ void add_vlm_unsteady(CLI::App& app, Action& action) {
     cmd->add_option("--motion", a->motion, "Motion file (CSV)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--out", a->out, "Output folder")->required();
+    cmd->add_option("--out", a->out, "Output folder")->required()->check(output_path());
     cmd->add_option("--dt", a->dt, "Time step [s] (default: one chordwise panel per step)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_positive(range::max_time_step, "s"));
     cmd->add_option("--speed", a->speed, "Entry free-stream speed v0 [m/s] (default: the motion's)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_positive(range::max_speed, "m/s"));
     cmd->add_option("--mach", a->mach, "Mach number (default: the motion's, else 0)")
-        ->check(CLI::Range(0.0, 0.95));
+        ->check(real_in(0.0, 0.95));
     cmd->add_option("--wake-length", a->wake_length, "Wake kept [reference chords] (default 20)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_positive(1000.0, "chords"));
     cmd->add_flag("--impulsive", a->impulsive,
                   "Impulsive start (default: from the steady solution)");
     cmd->add_flag("--free-wake", a->free_wake, "Force-free wake (default: convected with v0)");
     cmd->add_option("--n-chord", a->n_chord, "Chordwise vortices per strip (MANTA files)")
-        ->check(CLI::Range(1, 100));
+        ->check(integer_in(1, 100));
     cmd->add_option("--strip-width", a->strip_width, "Strip width / span (MANTA files)")
-        ->check(CLI::Range(1e-4, 0.5));
+        ->check(real_in(1e-4, 0.5));
     cmd->add_flag("--json", a->json, "Print the summary as one JSON object");
     cmd->callback([a, &action] {
         action = [a]() -> int {
@@ -241,21 +242,22 @@ void add_vlm_unsteady(CLI::App& app, Action& action) {
         ->check(CLI::ExistingFile);
     osc->add_option("--axis", b->axis, "pitch, roll, yaw or plunge (default pitch)");
     osc->add_option("--k", b->k, "Reduced frequency (c/2V pitch and plunge, b/2V roll and yaw)")
-        ->check(CLI::PositiveNumber);
+        ->check(real_positive(10.0));
     osc->add_option("--amplitude-deg", b->amplitude_deg, "Amplitude [deg] (default 1)")
-        ->check(CLI::PositiveNumber);
-    osc->add_option("--alpha-deg", b->alpha_deg, "Mean angle of attack [deg] (default 0)");
-    osc->add_option("--mach", b->mach, "Mach number (default 0)")->check(CLI::Range(0.0, 0.95));
+        ->check(real_positive(30.0, "deg"));
+    osc->add_option("--alpha-deg", b->alpha_deg, "Mean angle of attack [deg] (default 0)")
+        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
+    osc->add_option("--mach", b->mach, "Mach number (default 0)")->check(real_in(0.0, 0.95));
     osc->add_option("--periods", b->periods, "Periods simulated, the first discarded (default 3)")
-        ->check(CLI::Range(2, 100));
+        ->check(integer_in(2, 100));
     osc->add_option("--steps-per-period", b->steps_per_period, "Time steps per period (default 48)")
-        ->check(CLI::Range(8, 10000));
+        ->check(integer_in(8, 10000));
     osc->add_option("--n-chord", b->n_chord,
                     "Chordwise vortices per strip (MANTA files; default 6)")
-        ->check(CLI::Range(1, 100));
+        ->check(integer_in(1, 100));
     osc->add_option("--strip-width", b->strip_width,
                     "Strip width / span (MANTA files; default 0.02)")
-        ->check(CLI::Range(1e-4, 0.5));
+        ->check(real_in(1e-4, 0.5));
     osc->add_flag("--json", b->json, "Print one JSON object");
     osc->callback([b, &action] {
         action = [b]() -> int {

@@ -7,9 +7,11 @@
 #include <exception>
 #include <iostream>
 
+#include "checks.hpp"
 #include "commands.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/memory.hpp"
+#include "manta/core/text.hpp"
 #include "manta/core/version.hpp"
 
 namespace manta::cli {
@@ -27,10 +29,13 @@ void add_aircraft_options(CLI::App* cmd, AircraftOptions& o) {
 }
 
 void add_required_flight_condition(CLI::App* cmd, FlightCondition& c) {
-    cmd->add_option("--speed", c.speed, "True airspeed [m/s]")->required();
+    cmd->add_option("--speed", c.speed, "True airspeed [m/s]")
+        ->required()
+        ->check(real_positive(range::max_speed, "m/s"));
     cmd->add_option("--altitude", c.altitude,
                     "Altitude [m] (geometric, US Standard Atmosphere 1976)")
-        ->required();
+        ->required()
+        ->check(altitude());
 }
 
 }  // namespace manta::cli
@@ -42,6 +47,15 @@ int main(int argc, char** argv) {
         "MANTA: aircraft manoeuvres with aerodynamics from flow solutions.\n"
         "Run 'manta <command> --help' for the options of a command.",
         "manta"};
+    // Parse errors quote the command line: its control bytes are escaped (set before the
+    // subcommands are added, which copy it).
+    app.failure_message([](const CLI::App* a, const CLI::Error& e) {
+        const std::string what = e.what();
+        std::string text = CLI::FailureMessage::simple(a, e);
+        if (text.compare(0, what.size(), what) == 0)
+            text = core::printable(what) + text.substr(what.size());
+        return text;
+    });
     app.set_version_flag("--version", "manta " + core::version());
     app.require_subcommand(1);
     bool debug = false;
@@ -77,7 +91,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "manta: error: %s\n", e.what());
         return e.exit_code();
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "manta: internal error: %s\n", e.what());
+        std::fprintf(stderr, "manta: internal error: %s\n", core::printable(e.what()).c_str());
         return 1;
     }
 }

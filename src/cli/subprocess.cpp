@@ -1,14 +1,20 @@
 /// @file subprocess.cpp
-/// Child processes of `manta demo` (POSIX fork/exec, one pipe per child, poll).
+/// Child processes of `manta demo` (POSIX fork/exec, one pipe per child, poll). The children
+/// end with the demo: each asks the kernel for SIGTERM when its parent dies (PR_SET_PDEATHSIG,
+/// which covers a `kill -9` of the demo), and a SIGINT or SIGTERM to the demo is passed on to
+/// the running children before the demo ends by it.
 
 #include "subprocess.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <poll.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -34,6 +40,58 @@ fs::path self_executable() {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The running children's process ids, for the signal handler (0: a free slot). A child beyond
+// the slots still ends with the demo through PR_SET_PDEATHSIG.
+std::array<std::atomic<pid_t>, 256> g_children{};
+static_assert(std::atomic<pid_t>::is_always_lock_free);
+
+void remember_child(pid_t pid) {
+    for (auto& slot : g_children) {
+        pid_t free = 0;
+        if (slot.compare_exchange_strong(free, pid)) return;
+    }
+}
+
+void forget_child(pid_t pid) {
+    for (auto& slot : g_children) {
+        pid_t p = pid;
+        if (slot.compare_exchange_strong(p, 0)) return;
+    }
+}
+
+// SIGINT/SIGTERM: the same signal to every running child, then the default action (the demo
+// ends by the signal, as it would without the handler). Only async-signal-safe calls.
+extern "C" void pass_signal_on(int sig) {
+    for (auto& slot : g_children) {
+        const pid_t p = slot.load();
+        if (p > 0) ::kill(p, sig);
+    }
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+// The handlers installed while children run; the previous ones back when they are done.
+class PassSignalsOn {
+public:
+    PassSignalsOn() {
+        struct sigaction sa {};
+        sa.sa_handler = pass_signal_on;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGINT, &sa, &old_int_);
+        sigaction(SIGTERM, &sa, &old_term_);
+    }
+    ~PassSignalsOn() {
+        sigaction(SIGINT, &old_int_, nullptr);
+        sigaction(SIGTERM, &old_term_, nullptr);
+    }
+    PassSignalsOn(const PassSignalsOn&) = delete;
+    PassSignalsOn& operator=(const PassSignalsOn&) = delete;
+
+private:
+    struct sigaction old_int_ {};
+    struct sigaction old_term_ {};
+};
 
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -73,10 +131,16 @@ std::unique_ptr<Running> spawn(const fs::path& program, const ChildJob& job, std
     std::vector<std::string> env_s = environment;
     std::fflush(stdout);
     std::fflush(stderr);
+    const pid_t parent = getpid();
     const pid_t pid = fork();
     if (pid < 0) throw IoError(std::string("cannot start a process: ") + std::strerror(errno));
     if (pid == 0) {
         // Child: output to the pipe, then exec (only async-signal-safe calls from here).
+        // SIGTERM when the demo dies, however it dies; if it died before this line, end now.
+        prctl(PR_SET_PDEATHSIG, SIGTERM);
+        if (getppid() != parent) _exit(128 + SIGTERM);
+        signal(SIGINT, SIG_DFL);
+        signal(SIGTERM, SIG_DFL);
         close(fds[0]);
         dup2(fds[1], STDOUT_FILENO);
         dup2(fds[1], STDERR_FILENO);
@@ -86,6 +150,7 @@ std::unique_ptr<Running> spawn(const fs::path& program, const ChildJob& job, std
         _exit(127);
     }
     close(fds[1]);
+    remember_child(pid);
     fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
     r->pid = pid;
     r->fd = fds[0];
@@ -129,6 +194,7 @@ std::string shorten(const std::string& s, std::size_t n = 140) {
 std::vector<ChildResult> run_children(const fs::path& program, const std::vector<ChildJob>& jobs,
                                       const RunChildrenOptions& options) {
     std::vector<ChildResult> results(jobs.size());
+    const PassSignalsOn pass_signals;
     std::vector<std::unique_ptr<Running>> running;
     std::size_t next = 0;
     const int width = options.jobs < 1 ? 1 : options.jobs;
@@ -168,6 +234,7 @@ std::vector<ChildResult> run_children(const fs::path& program, const std::vector
             int status = 0;
             while (waitpid(r.pid, &status, 0) < 0 && errno == EINTR) {
             }
+            forget_child(r.pid);
             ChildResult res;
             res.name = jobs[r.index].name;
             res.exit_code = WIFEXITED(status)     ? WEXITSTATUS(status)

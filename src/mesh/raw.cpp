@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 
 #include "manta/core/error.hpp"
 
@@ -75,9 +77,54 @@ std::string read_maybe_gzipped(const std::filesystem::path& file) {
         }
         if (n == 0) break;
         out.append(buf.data(), static_cast<std::size_t>(n));
+        // A compression bomb (issue 16): mesh text compresses 3 to 10 times; refuse to hold
+        // more than 256 MiB that expanded over 100 times.
+        if (!ec && out.size() > (256u << 20) && out.size() / 100 > size) {
+            gzclose(g);
+            throw InputError(fmt::format(
+                "{}: decompresses to more than {} bytes from {} compressed bytes (ratio over "
+                "100); expected a mesh (a damaged or hostile gzip file?)",
+                file.string(), out.size(), size));
+        }
     }
     gzclose(g);
     return out;
+}
+
+detail::ByteStream detail::open_mesh_stream(const std::filesystem::path& file,
+                                            std::shared_ptr<void>& handle) {
+    gzFile g = gzopen(file.string().c_str(), "rb");
+    if (g == nullptr)
+        throw IoError(fmt::format("{}: cannot open the mesh file for reading", file.string()));
+    handle = std::shared_ptr<void>(g, [](void* p) { gzclose(static_cast<gzFile>(p)); });
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(file, ec);
+    const std::uint64_t file_size = ec ? 0 : static_cast<std::uint64_t>(size);
+    auto delivered = std::make_shared<std::uint64_t>(0);
+    detail::ByteStream s;
+    s.read = [g, file, delivered](char* out, std::size_t n) -> std::size_t {
+        const int got = gzread(g, out, static_cast<unsigned>(n));
+        if (got < 0) {
+            int err = 0;
+            const std::string msg = gzerror(g, &err);
+            throw IoError(
+                fmt::format("{}: read error after {} bytes ({}); expected a readable, "
+                            "complete file",
+                            file.string(), *delivered, msg));
+        }
+        *delivered += static_cast<std::uint64_t>(got);
+        return static_cast<std::size_t>(got);
+    };
+    s.bound = [g, file_size]() -> std::size_t {
+        // Compressed bytes not yet consumed (zlib reads ahead, hence the 64 KiB of slack) times
+        // deflate's largest expansion, 1032 to 1 (zlib technical details, zlib.net/zlib_tech.html).
+        const auto consumed = static_cast<std::uint64_t>(std::max<z_off_t>(gzoffset(g), 0));
+        const std::uint64_t left = (file_size > consumed ? file_size - consumed : 0) + (64u << 10);
+        const std::uint64_t ratio = gzdirect(g) ? 1 : 1032;
+        return static_cast<std::size_t>(
+            std::min<std::uint64_t>(left * ratio, std::numeric_limits<std::size_t>::max() / 2));
+    };
+    return s;
 }
 
 namespace detail {
@@ -429,9 +476,32 @@ Mesh build_mesh(RawMesh raw, const ReadOptions& options) {
     return build_3d(raw);
 }
 
+bool LineCursor::refill() {
+    if (!streaming_ || eof_) return false;
+    buffer_.erase(0, std::min(pos_, buffer_.size()));
+    pos_ = 0;
+    constexpr std::size_t chunk = 1u << 16;
+    const std::size_t old = buffer_.size();
+    buffer_.resize(old + chunk);
+    const std::size_t got = stream_.read(buffer_.data() + old, chunk);
+    buffer_.resize(old + got);
+    text_ = buffer_;
+    if (got == 0) eof_ = true;
+    return got > 0;
+}
+
 bool LineCursor::next(std::string_view& line) {
+    std::size_t end = text_.find('\n', pos_);
+    // A stream reads on until the line is complete (or the stream ends).
+    while (streaming_ && end == std::string_view::npos && !eof_) {
+        const std::size_t scanned = text_.size() - std::min(pos_, text_.size());
+        if (scanned > max_stream_line)
+            fail(fmt::format("a line longer than {} bytes; expected mesh text lines",
+                             max_stream_line));
+        if (!refill()) break;
+        end = text_.find('\n', pos_ + scanned);
+    }
     if (pos_ >= text_.size()) return false;
-    const std::size_t end = text_.find('\n', pos_);
     const std::size_t stop = end == std::string_view::npos ? text_.size() : end;
     line_start_ = pos_;
     line = text_.substr(pos_, stop - pos_);

@@ -5,6 +5,9 @@
 
 #include <charconv>
 #include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -74,19 +77,41 @@ std::size_t drop_interior_faces(RawMesh& raw);
 /// Build the finalized 3-D mesh (2-D meshes extruded into a slab, `options`).
 [[nodiscard]] Mesh build_mesh(RawMesh raw, const ReadOptions& options);
 
-/// Splits text into lines and tokens, counting lines (1-based) for messages.
+/// Where a streaming LineCursor gets its bytes: `read` fills up to `n` bytes and returns how
+/// many (0 at the end; it throws IoError on a read error); `bound` returns an upper bound on the
+/// bytes `read` can still deliver (for a gzip stream: the compressed bytes left times deflate's
+/// largest ratio, 1032).
+struct ByteStream {
+    std::function<std::size_t(char* out, std::size_t n)> read;
+    std::function<std::size_t()> bound;
+};
+
+/// A ByteStream over `file`, gunzipped if it is gzip-compressed (plain files pass through);
+/// `handle` keeps the open file until the last copy of it is dropped. IoError if unreadable.
+[[nodiscard]] ByteStream open_mesh_stream(const std::filesystem::path& file,
+                                          std::shared_ptr<void>& handle);
+
+/// Splits text into lines and tokens, counting lines (1-based) for messages. Either over text
+/// held in memory or over a ByteStream read in chunks (then at most one chunk and the current
+/// line are held; a line may not exceed `max_stream_line` bytes).
 class LineCursor {
 public:
+    static constexpr std::size_t max_stream_line = 16u << 20;
+
     LineCursor(std::string_view text, std::string source)
         : text_(text), source_(std::move(source)) {}
+    LineCursor(ByteStream stream, std::string source)
+        : stream_(std::move(stream)), streaming_(true), source_(std::move(source)) {}
     /// Next line (without its end), or false at the end of the text.
     bool next(std::string_view& line);
     /// Next line that is not blank (after stripping `comment` and what follows, if non-zero).
     bool next_content(std::string_view& line, char comment = 0);
     [[nodiscard]] std::int64_t line() const noexcept { return line_; }
-    /// Bytes not yet read (a bound on the number of lines left: each takes two or more).
-    [[nodiscard]] std::size_t remaining() const noexcept {
-        return pos_ < text_.size() ? text_.size() - pos_ : 0;
+    /// Bytes not yet read (a bound on the number of lines left: each takes two or more); for a
+    /// stream, the bytes buffered plus the stream's bound.
+    [[nodiscard]] std::size_t remaining() const {
+        const std::size_t here = pos_ < text_.size() ? text_.size() - pos_ : 0;
+        return streaming_ && !eof_ ? here + stream_.bound() : here;
     }
     /// InputError unless `n` lines can still follow ("NPOIN= 10^9" in a short file).
     void require_lines(std::int64_t n, std::string_view what) const;
@@ -104,6 +129,13 @@ public:
     [[noreturn]] void fail(const std::string& what) const;
 
 private:
+    /// Stream mode: read more bytes into the buffer (dropping what was read); false at the end.
+    bool refill();
+
+    ByteStream stream_;
+    bool streaming_ = false;
+    bool eof_ = false;
+    std::string buffer_;
     std::string_view text_;
     std::size_t pos_ = 0;
     std::int64_t line_ = 0;
