@@ -23,8 +23,11 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-## Run the main job on the Ranger 2000 with the embedded default aircraft.
-demo: build
+## Run the main job on the Ranger 2000 with the embedded default aircraft. The demo needs only the
+## `manta` program: that target alone is built, so the demo starts before the tests and benchmarks
+## are compiled (`make test` builds everything).
+demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target manta
 	$(BUILD)/bin/manta demo --out $(DEMO_OUT)
 
 ## Every unit test and the fast validations against published references.
