@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Fuzz the mesh readers (docs/fuzzing.md): configure and build fuzz/ with clang into
+# Fuzz every input reader (docs/fuzzing.md): configure and build fuzz/ with clang into
 # $BUILD_FUZZ (default build-fuzz), replay the saved regression inputs, then run each libFuzzer
-# target (fuzz_su2, fuzz_gmsh, fuzz_cgns) for SECONDS (default 60). Fails on the first crash,
-# sanitizer report, timeout or out-of-memory; the input is then under $BUILD_FUZZ/artifacts/.
+# target for SECONDS (default 60): the mesh readers (su2, gmsh, cgns), the YAML readers
+# (aircraft, aero_database, campaign, manoeuvre, cfd_config), the CSV readers (motion, inputs,
+# trajectory) and the AVL reader (avl). Fails on the first crash, sanitizer report, timeout or
+# out-of-memory; the input is then under $BUILD_FUZZ/artifacts/<reader>/.
 #   scripts/run-fuzz.sh [SECONDS]      e.g. scripts/run-fuzz.sh 300
+#   READERS="motion avl" scripts/run-fuzz.sh 30    only these targets
 # Needs clang (Debian clang-14) and libclang-rt-14-dev (it ships libclang_rt.fuzzer).
 set -euo pipefail
 
@@ -28,19 +31,34 @@ if [ -z "$cxx" ]; then
 fi
 
 cmake -S "$root/fuzz" -B "$build" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build" -j "$jobs" --target fuzz_su2 fuzz_gmsh fuzz_cgns make_cgns_seeds
+readers="${READERS:-su2 gmsh cgns aircraft aero_database campaign manoeuvre cfd_config motion inputs trajectory avl}"
+targets=()
+for reader in $readers; do targets+=("fuzz_$reader"); done
+cmake --build "$build" -j "$jobs" --target "${targets[@]}" make_cgns_seeds
 
 # Seeds: the files kept in fuzz/corpus/ (SU2 and MSH text; for CGNS, inputs of the decoded
 # mode) and the CGNS files written now. The working corpora (what each run adds) stay in the
 # build folder between runs.
-"$build/make_cgns_seeds" "$build/seeds/cgns" >/dev/null
-for reader in su2 gmsh cgns; do
+case " $readers " in *" cgns "*) "$build/make_cgns_seeds" "$build/seeds/cgns" >/dev/null ;; esac
+# The other readers are seeded with the examples and test data of their format as well.
+seed_files() {
+    case "$1" in
+        aircraft) echo "$root"/examples/*/aircraft.yaml "$root"/tests/data/report/run/aircraft.yaml ;;
+        campaign) echo "$root"/examples/campaigns/*.yaml "$root"/examples/ranger2000/campaign.yaml ;;
+        manoeuvre) echo "$root"/examples/ranger2000/manoeuvres/*.yaml ;;
+        *) ;;
+    esac
+}
+for reader in $readers; do
     mkdir -p "$build/seeds/$reader"
-    cp "$root"/fuzz/corpus/"$reader"/* "$build/seeds/$reader/"
+    if [ -d "$root/fuzz/corpus/$reader" ]; then cp "$root"/fuzz/corpus/"$reader"/* "$build/seeds/$reader/"; fi
+    for f in $(seed_files "$reader"); do
+        if [ -f "$f" ]; then cp "$f" "$build/seeds/$reader/$(echo "${f#"$root"/}" | tr / _)"; fi
+    done
 done
 
 status=0
-for reader in su2 gmsh cgns; do
+for reader in $readers; do
     exe="$build/fuzz_$reader"
     corpus="$build/corpus/$reader"
     artifacts="$build/artifacts/$reader/"

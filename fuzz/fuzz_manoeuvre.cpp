@@ -1,0 +1,23 @@
+/// @file fuzz_manoeuvre.cpp
+/// libFuzzer target for the manoeuvre YAML reader (`manoeuvres::parse_manoeuvre`) (issue 16; docs/fuzzing.md): any bytes must give a
+/// result or a `manta::Error`; any other exception, a crash, a hang or a sanitizer report is a
+/// finding.
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "manta/core/error.hpp"
+#include <string>
+
+#include "manta/manoeuvres/manoeuvre.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    try {
+        (void)manta::manoeuvres::parse_manoeuvre(text, std::string("fuzz.yaml"));
+    } catch (const manta::Error&) {
+        // A one-line input error: the expected outcome for malformed input.
+    }
+    return 0;
+}
