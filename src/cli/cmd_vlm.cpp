@@ -17,7 +17,9 @@
 #include "manta/core/error.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
+#include "manta/vlm/avl_mass.hpp"
 #include "manta/vlm/avl_reader.hpp"
+#include "manta/vlm/avl_run.hpp"
 #include "manta/vlm/output.hpp"
 #include "manta/vlm/source.hpp"
 #include "manta/vlm/steady.hpp"
@@ -64,7 +66,35 @@ struct VlmArgs {
     double strip_width = vlm::LatticeDensity{}.strip_width;
     std::string vtu, span_csv;
     bool json = false;
+    // AVL users' files (AVL geometry only) and the moment reference point.
+    std::string mass_file, run_file;
+    int run_case = 1;
+    std::vector<double> xref;  // X Y Z
 };
+
+/// The options of AVL's mass and run-case files and of the moment reference point; the run case
+/// sets the flight state, so it excludes the state options.
+void add_reference_options(CLI::App& cmd, VlmArgs& a) {
+    cmd.add_option("--mass", a.mass_file,
+                   "AVL mass file (.mass): its centre of gravity is the moment "
+                   "reference point (AVL geometry only)")
+        ->check(CLI::ExistingFile);
+    auto* run = cmd.add_option("--run", a.run_file,
+                               "AVL run-case file (.run): the case's constraints (trim), Mach, "
+                               "CDo and X_cg Y_cg Z_cg (AVL geometry only)")
+                    ->check(CLI::ExistingFile);
+    cmd.add_option("--case", a.run_case, "Run case of --run (default 1)")
+        ->check(integer_in(1, 1000000))
+        ->needs(run);
+    cmd.add_option("--xref", a.xref,
+                   "Moment reference point X Y Z (geometry axes; AVL files: the .avl length unit, "
+                   "MANTA files: m); overrides --run, --mass and the aircraft file")
+        ->expected(3)
+        ->check(real_in(-1e6, 1e6));
+    for (const char* o : {"--alpha-deg", "--beta-deg", "--p-hat", "--q-hat", "--r-hat",
+                          "--elevator-deg", "--aileron-deg", "--rudder-deg", "--control"})
+        run->excludes(cmd.get_option(o));
+}
 
 /// {CL CD CY Cl Cm Cn} column as JSON keyed by coefficient.
 nlohmann::json coefficient_column(const Eigen::Matrix<double, 6, Eigen::Dynamic>& m,
@@ -82,6 +112,31 @@ void run_vlm(const VlmArgs& a) {
     density.n_chord = a.n_chord;
     density.strip_width = a.strip_width;
     VlmInput in = load_vlm_input(a.aircraft, density);
+    // AVL's mass and run-case files, and the moment reference point (docs/avl-input.md).
+    std::optional<vlm::AvlMass> mass;
+    std::optional<vlm::RunCase> run_case;
+    if (in.geometry && (!a.mass_file.empty() || !a.run_file.empty()))
+        throw InputError(fmt::format(
+            "vlm: --mass and --run read AVL's mass and run-case files; expected them with an AVL "
+            "geometry file (.avl), not with the MANTA aircraft file '{}'",
+            a.aircraft));
+    if (!a.mass_file.empty()) mass = vlm::read_avl_mass(a.mass_file);
+    if (!a.run_file.empty()) {
+        run_case = vlm::find_run_case(vlm::read_avl_run(a.run_file), a.run_case, a.run_file);
+        vlm::apply_run_case(in.model, *run_case);
+        in.default_mach = in.model.mach;
+    }
+    std::optional<Eigen::Vector3d> xref;
+    if (a.xref.size() == 3) xref = Eigen::Vector3d(a.xref[0], a.xref[1], a.xref[2]);
+    vlm::ReferenceChoice reference;
+    if (in.geometry) {
+        reference.point = xref.value_or(in.model.reference.point);
+        reference.from = xref ? "--xref" : "the aircraft file";
+    } else {
+        reference = vlm::choose_reference_point(in.model, mass ? &*mass : nullptr,
+                                                run_case ? &*run_case : nullptr, xref);
+    }
+    in.model.reference.point = reference.point;
     const double mach = a.mach.value_or(in.default_mach);
     const vlm::Lattice lattice = vlm::build_lattice(in.model);
     const auto t1 = clock::now();
@@ -89,43 +144,54 @@ void run_vlm(const VlmArgs& a) {
     const auto t2 = clock::now();
 
     vlm::FlowState s;
-    s.alpha = a.alpha_deg * core::deg_to_rad;
-    s.beta = a.beta_deg * core::deg_to_rad;
-    s.p_hat = a.p_hat;
-    s.q_hat = a.q_hat;
-    s.r_hat = a.r_hat;
-    s.deflection = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(lattice.control_names.size()));
-    auto set_control = [&](const std::string& name, double deg, bool required) {
-        const int k = lattice.control_index(name);
-        if (k < 0) {
-            if (!required && deg == 0.0) return;
-            std::string known;
-            for (const auto& n : lattice.control_names) known += (known.empty() ? "" : ", ") + n;
-            throw InputError(
-                fmt::format("vlm: control '{}' is not on this aircraft; its controls are: {}", name,
-                            known.empty() ? "(none)" : known));
+    vlm::Derivatives d;
+    int run_iterations = 0;
+    if (run_case) {
+        vlm::RunCaseSolution sol = vlm::solve_run_case(solver, *run_case);
+        s = sol.state;
+        d = std::move(sol.derivatives);
+        run_iterations = sol.iterations;
+    } else {
+        s.alpha = a.alpha_deg * core::deg_to_rad;
+        s.beta = a.beta_deg * core::deg_to_rad;
+        s.p_hat = a.p_hat;
+        s.q_hat = a.q_hat;
+        s.r_hat = a.r_hat;
+        s.deflection =
+            Eigen::VectorXd::Zero(static_cast<Eigen::Index>(lattice.control_names.size()));
+        auto set_control = [&](const std::string& name, double deg, bool required) {
+            const int k = lattice.control_index(name);
+            if (k < 0) {
+                if (!required && deg == 0.0) return;
+                std::string known;
+                for (const auto& n : lattice.control_names)
+                    known += (known.empty() ? "" : ", ") + n;
+                throw InputError(
+                    fmt::format("vlm: control '{}' is not on this aircraft; its controls are: {}",
+                                name, known.empty() ? "(none)" : known));
+            }
+            s.deflection[k] = deg * core::deg_to_rad;
+        };
+        set_control("elevator", a.elevator_deg, false);
+        set_control("aileron", a.aileron_deg, false);
+        set_control("rudder", a.rudder_deg, false);
+        for (const std::string& c : a.controls) {
+            const auto eq = c.find('=');
+            double v = 0.0;
+            try {
+                if (eq == std::string::npos) throw std::invalid_argument("no '='");
+                std::size_t used = 0;
+                v = std::stod(c.substr(eq + 1), &used);
+                if (used != c.size() - eq - 1) throw std::invalid_argument("trailing text");
+            } catch (const std::exception&) {
+                throw InputError(fmt::format(
+                    "vlm: --control '{}'; expected NAME=DEGREES, e.g. --control flap=10", c));
+            }
+            set_control(c.substr(0, eq), v, true);
         }
-        s.deflection[k] = deg * core::deg_to_rad;
-    };
-    set_control("elevator", a.elevator_deg, false);
-    set_control("aileron", a.aileron_deg, false);
-    set_control("rudder", a.rudder_deg, false);
-    for (const std::string& c : a.controls) {
-        const auto eq = c.find('=');
-        double v = 0.0;
-        try {
-            if (eq == std::string::npos) throw std::invalid_argument("no '='");
-            std::size_t used = 0;
-            v = std::stod(c.substr(eq + 1), &used);
-            if (used != c.size() - eq - 1) throw std::invalid_argument("trailing text");
-        } catch (const std::exception&) {
-            throw InputError(fmt::format(
-                "vlm: --control '{}'; expected NAME=DEGREES, e.g. --control flap=10", c));
-        }
-        set_control(c.substr(0, eq), v, true);
-    }
 
-    const vlm::Derivatives d = solver.derivatives(s);
+        d = solver.derivatives(s);
+    }
     vlm::SteadyResult r = d.state;
     const auto t3 = clock::now();
 
@@ -155,9 +221,33 @@ void run_vlm(const VlmArgs& a) {
         j["model"] = in.model.name;
         j["input"] = in.label;
         j["alpha"] = s.alpha;
-        j["alpha_deg"] = a.alpha_deg;
+        j["alpha_deg"] = s.alpha * core::rad_to_deg;
         j["beta"] = s.beta;
-        j["beta_deg"] = a.beta_deg;
+        j["beta_deg"] = s.beta * core::rad_to_deg;
+        j["reference_point"] = {reference.point.x(), reference.point.y(), reference.point.z()};
+        j["reference_point_from"] = reference.from;
+        if (mass)
+            j["mass_file"] = {{"file", a.mass_file},
+                              {"items", mass->items},
+                              {"mass", mass->mass},
+                              {"cg", {mass->cg.x(), mass->cg.y(), mass->cg.z()}},
+                              {"length_unit", mass->length_unit},
+                              {"length_unit_name", mass->length_unit_name},
+                              {"mass_unit", mass->mass_unit},
+                              {"mass_unit_name", mass->mass_unit_name}};
+        if (run_case) {
+            nlohmann::json cons = nlohmann::json::array();
+            for (const auto& c : run_case->constraints)
+                cons.push_back({{"variable", c.variable},
+                                {"constraint", c.constraint},
+                                {"value", c.value},
+                                {"line", c.line}});
+            j["run_case"] = {{"file", a.run_file},
+                             {"number", run_case->number},
+                             {"name", run_case->name},
+                             {"constraints", cons},
+                             {"newton_iterations", run_iterations}};
+        }
         j["mach"] = mach;
         j["p_hat"] = s.p_hat;
         j["q_hat"] = s.q_hat;
@@ -214,8 +304,15 @@ void run_vlm(const VlmArgs& a) {
     }
     fmt::print("{} ({}): {} vortices on {} strips, {} surfaces\n", in.model.name, in.label,
                lattice.size(), lattice.strips.size(), in.model.surfaces.size());
-    fmt::print("alpha {:.3f} deg  beta {:.3f} deg  Mach {:.3f}  p^ {:.4f}  q^ {:.4f}  r^ {:.4f}\n",
-               a.alpha_deg, a.beta_deg, mach, s.p_hat, s.q_hat, s.r_hat);
+    if (run_case)
+        fmt::print("run case {} '{}' of {}: {} constraints met in {} Newton iterations\n",
+                   run_case->number, run_case->name, a.run_file, run_case->constraints.size(),
+                   run_iterations);
+    fmt::print("moments about ({:g}, {:g}, {:g}) from {}\n", reference.point.x(),
+               reference.point.y(), reference.point.z(), reference.from);
+    fmt::print("alpha {:.4f} deg  beta {:.4f} deg  Mach {:.3f}  p^ {:.4f}  q^ {:.4f}  r^ {:.4f}\n",
+               s.alpha * core::rad_to_deg, s.beta * core::rad_to_deg, mach, s.p_hat, s.q_hat,
+               s.r_hat);
     for (std::size_t k = 0; k < lattice.control_names.size(); ++k)
         fmt::print("  {:<10} {:8.3f} deg\n", lattice.control_names[k],
                    s.deflection[static_cast<Eigen::Index>(k)] * core::rad_to_deg);
@@ -238,7 +335,8 @@ void run_vlm(const VlmArgs& a) {
             fmt::print(" {:10.5f}", d.control_stability(c, static_cast<Eigen::Index>(k)));
         fmt::print("\n");
     }
-    fmt::print("\nneutral point x = {:.4f} m, static margin {:.2f} % of c_ref\n", d.x_neutral_point,
+    fmt::print("\nneutral point x = {:.4f} {}, static margin {:.2f} % of c_ref\n",
+               d.x_neutral_point, in.geometry ? "m" : "(length unit of the .avl file)",
                100.0 * d.static_margin);
     fmt::print(
         "time: lattice {:.0f} ms, factorisation {:.0f} ms, solution and derivatives {:.0f} ms\n",
@@ -292,6 +390,7 @@ void add_vlm(CLI::App& app, Action& action) {
     cmd->add_option("--span-csv", a->span_csv, "Write the span loading as CSV")
         ->check(output_path());
     cmd->add_flag("--json", a->json, "Print one JSON object (SI units, radians)");
+    add_reference_options(*cmd, *a);
     cmd->callback([a, &action] {
         action = [a]() -> int {
             run_vlm(*a);
