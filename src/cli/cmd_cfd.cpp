@@ -362,7 +362,7 @@ void add_cfd(CLI::App& app, Action& action) {
         ->required()
         ->check(CLI::ExistingFile);
     cmd->add_option("--mach", a->mach, "Free-stream Mach number (or flow.mach in --config)")
-        ->check(real_positive(10.0));
+        ->check(real_in(0.0, 10.0));  // 0 is refused by the flow set-up, with its reason
     cmd->add_option("--alpha-deg", a->alpha_deg, "Angle of attack [deg] (default 0)")
         ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
     cmd->add_option("--beta-deg", a->beta_deg, "Sideslip [deg], wind from the right (default 0)")
