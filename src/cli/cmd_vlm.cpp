@@ -187,6 +187,11 @@ void run_vlm(const VlmArgs& a) {
                 throw InputError(fmt::format(
                     "vlm: --control '{}'; expected NAME=DEGREES, e.g. --control flap=10", c));
             }
+            if (!(std::abs(v) <= range::max_angle_deg))
+                throw InputError(fmt::format(
+                    "--control: value '{}' of '{}' is not a deflection; expected NAME=DEGREES "
+                    "with DEGREES a number in [-90, 90]",
+                    c.substr(eq + 1), c.substr(0, eq)));
             set_control(c.substr(0, eq), v, true);
         }
 

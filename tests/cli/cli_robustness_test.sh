@@ -150,6 +150,10 @@ for t in "simulate --aircraft $ranger --duration 1 --out @" "simulate --aircraft
     args=(); for w in "${words[@]}"; do if [ "$w" = "@" ]; then args+=(""); else args+=("$w"); fi; done
     check "${words[0]}: an empty path is bad input" 2 "$manta" "${args[@]}"
 done
+for value in nan inf 1e5; do
+    check "vlm --control elevator=$value" 2 "$manta" vlm --aircraft "$ranger" --n-chord 2 --strip-width 0.2 --mach 0.3 --control "elevator=$value"
+    contains "vlm --control $value named" "$work/err.txt" "^manta: error: --control: value '$value' of 'elevator' is not a deflection"
+done
 check "replay --tolerance CL=inf" 2 "$manta" replay --trajectory "$work/traj.csv" --aircraft "$ranger" --out "$work/r8" --tolerance CL=inf
 # Values inside the ranges still work.
 check "vlm in range" 0 "$manta" vlm --aircraft "$work/plate.avl" --alpha-deg +4 --mach 0 --p-hat -0.1 --json
