@@ -354,7 +354,7 @@ private:
 
     int integer(double v, const Line& line, std::string_view keyword,
                 std::string_view field) const {
-        if (std::abs(v - std::round(v)) > 1e-9 || std::abs(v) > 1e6)
+        if (!(std::abs(v - std::round(v)) <= 1e-9 && std::abs(v) <= 1e6))  // NaN fails too
             fail(line.number, keyword,
                  fmt::format("{} = {:g} in '{}'; expected an integer", field, v, line.text));
         return static_cast<int>(std::lround(v));
@@ -362,7 +362,7 @@ private:
 
     void check_spacing(double p, const Line& line, std::string_view keyword,
                        std::string_view field) const {
-        if (std::abs(p) > 3.0)
+        if (!(std::abs(p) <= 3.0))
             fail(line.number, keyword,
                  fmt::format("{} = {:g}; expected a spacing parameter in [-3, 3]", field, p));
     }
@@ -859,7 +859,7 @@ private:
                                        "a deflection gain")
                               : 1.0;
         c.hinge_chord_fraction = v.size() > 1 ? v[1] : 0.0;
-        if (std::abs(c.hinge_chord_fraction) > 1.0)
+        if (!(std::abs(c.hinge_chord_fraction) <= 1.0))
             fail(d.number, "CONTROL",
                  fmt::format("Xhinge = {:g}; expected a chord fraction in [-1, 1] (negative: "
                              "leading-edge surface)",
@@ -889,7 +889,7 @@ private:
                                  "'{}'; expected Nspan >= 1 on this SECTION or Nspan Sspace on "
                                  "the SURFACE line",
                                  s.surface.name));
-            if (s.surface.n_span == 0 && std::abs(sec.span_spacing) > 3.0)
+            if (s.surface.n_span == 0 && !(std::abs(sec.span_spacing) <= 3.0))
                 fail(s.sections[i].line, "SECTION",
                      fmt::format("Sspace = {:g}; expected a spacing parameter in [-3, 3]",
                                  sec.span_spacing));
