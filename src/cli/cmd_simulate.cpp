@@ -501,7 +501,6 @@ int run_ensemble(const SimulateArgs& a) {
             "--cases needs --out-dir DIR (where DIR/<name>.csv per case and DIR/summary.json go)");
     flightdyn::SimulationOptions opt = make_options(a);
     const std::vector<CaseRow> rows = read_cases(a.cases);  // errors before the aircraft is read
-    const core::RunFolderLock lock(a.out_dir, "simulate", "--out-dir");
 
     const auto def = aircraft::load_aircraft(a.ac.aircraft);
     const flightdyn::FlightModel model = def.flight_model(a.ac.mass_case);
@@ -525,6 +524,8 @@ int run_ensemble(const SimulateArgs& a) {
         cases.push_back({c.name, trims.back().state, std::move(inputs)});
     }
 
+    // Every case trimmed: the output folder is checked and locked before anything is flown.
+    const core::RunFolderLock lock(a.out_dir, "simulate", "--out-dir");
     bool printed = false;
     if (!a.json) install_progress(opt, printed);
     const auto t0 = std::chrono::steady_clock::now();
