@@ -39,12 +39,13 @@ vlm::Model ranger() {
 }
 
 void run(benchmark::State& state, const vlm::Model& m, double mach, double alpha,
-         bool single = true) {
+         bool single = true, vlm::TrailingLegs legs = vlm::TrailingLegs::body_axis) {
     const vlm::Lattice lattice = vlm::build_lattice(m);
     vlm::FlowState s;
     s.alpha = alpha;
     vlm::SteadyOptions o;
     o.single_precision = single;
+    o.trailing_legs = legs;
     for (auto _ : state) {
         const vlm::SteadySolver solver(m, lattice, mach, o);
         benchmark::DoNotOptimize(solver.derivatives(s));
@@ -56,6 +57,32 @@ void BM_ranger_steady_and_derivatives(benchmark::State& state) {
     run(state, ranger(), 0.3, 0.035);
 }
 BENCHMARK(BM_ranger_steady_and_derivatives)->Unit(benchmark::kMillisecond);
+
+/// Trailing legs along the free stream (the aerodynamic source's, MANTA issue 16).
+void BM_ranger_steady_and_derivatives_freestream_legs(benchmark::State& state) {
+    run(state, ranger(), 0.3, 0.035, true, vlm::TrailingLegs::freestream);
+}
+BENCHMARK(BM_ranger_steady_and_derivatives_freestream_legs)->Unit(benchmark::kMillisecond);
+
+/// One steady solution (no derivatives) with a solver built once, as the aerodynamic source
+/// evaluates a table point: body-axis and free-stream legs.
+void solve_only(benchmark::State& state, vlm::TrailingLegs legs) {
+    const vlm::Model m = ranger();
+    vlm::SteadyOptions o;
+    o.trailing_legs = legs;
+    const vlm::SteadySolver solver(m, vlm::build_lattice(m), 0.3, o);
+    vlm::FlowState s;
+    s.alpha = 0.035;
+    for (auto _ : state) benchmark::DoNotOptimize(solver.solve(s));
+}
+void BM_ranger_steady_solve(benchmark::State& state) {
+    solve_only(state, vlm::TrailingLegs::body_axis);
+}
+BENCHMARK(BM_ranger_steady_solve)->Unit(benchmark::kMillisecond);
+void BM_ranger_steady_solve_freestream_legs(benchmark::State& state) {
+    solve_only(state, vlm::TrailingLegs::freestream);
+}
+BENCHMARK(BM_ranger_steady_solve_freestream_legs)->Unit(benchmark::kMillisecond);
 
 void BM_ranger_steady_and_derivatives_double(benchmark::State& state) {
     run(state, ranger(), 0.3, 0.035, false);

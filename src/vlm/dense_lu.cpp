@@ -76,6 +76,17 @@ Eigen::MatrixXd DenseLU::solve(Eigen::MatrixXd b, double tolerance) const {
     return x;
 }
 
+Eigen::MatrixXd DenseLU::solve_unrefined(Eigen::MatrixXd b) const {
+    const Eigen::Index n = rows(), k = b.cols();
+    if (!single_) {
+        kernels().lu_solve(lu_.data(), n, perm_.data(), b.data(), k);
+        return b;
+    }
+    Eigen::MatrixXf df = b.cast<float>();
+    kernels().lu_solve_f(luf_.data(), n, perm_.data(), df.data(), k);
+    return df.cast<double>();
+}
+
 Eigen::VectorXd DenseLU::solve(Eigen::VectorXd b) const {
     const Eigen::MatrixXd x = solve(Eigen::MatrixXd(std::move(b)));
     return x.col(0);

@@ -133,7 +133,11 @@ std::shared_ptr<const SteadySolver> VlmSource::solver(double mach) const {
         if (it != solvers_.end()) return it->second;
     }
     // Built outside the lock (seconds for large lattices); a concurrent duplicate is harmless.
-    auto s = std::make_shared<const SteadySolver>(model_, lattice_, mach);
+    // Trailing legs along the free stream: the steady limit of the unsteady lattice's convected
+    // wake (start_unsteady, replay), so that tables made here and a replay agree in steady flight.
+    SteadyOptions o;
+    o.trailing_legs = TrailingLegs::freestream;
+    auto s = std::make_shared<const SteadySolver>(model_, lattice_, mach, o);
     const std::lock_guard lock(mutex_);
     if (solvers_.size() >= 16) solvers_.erase(solvers_.begin());
     return solvers_.emplace(mach, std::move(s)).first->second;

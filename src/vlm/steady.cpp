@@ -202,9 +202,14 @@ int component_of(const Model& m, const Lattice& L, std::size_t i) {
 
 }  // namespace
 
-/// The horseshoes in the solver's arrays (built once; `induced_at_bound` reuses them).
+/// The horseshoes in the solver's arrays (built once; `induced_at_bound` reuses them), and one
+/// horseshoe per strip between its two trailing-edge points (`te`, stretched; physical ends
+/// te_a, te_b): every horseshoe of a strip has its legs through those two points, so their parts
+/// behind the trailing edge are this horseshoe's legs less its bound segment (leg_bend).
 struct SteadySolver::Kernel {
     Stretched st;
+    Stretched te;
+    std::vector<Vector3d> te_a, te_b;
 };
 
 /// Mirror symmetry about y = 0 (see the constructor): the orbits of the reflection and the two
@@ -277,8 +282,9 @@ bool find_mirror(const Model& model, const Lattice& L, const Stretched& st,
 }  // namespace
 
 struct SteadySolver::Units {
-    MatrixXd G;  // N x K circulations
-    MatrixXd U;  // 3N x K induced velocity at bound midpoints
+    MatrixXd G;     // N x K circulations
+    MatrixXd U;     // 3N x K induced velocity at bound midpoints
+    Trefftz plane;  // of the legs' direction
 };
 
 void set_wind_forces(SteadyResult& r, double CL, double CD, double CY, double alpha, double beta) {
@@ -312,6 +318,29 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
     kernel->st = make_stretched(model_, lattice_, beta_pg_, options_);
     Stretched& st = kernel->st;
     st.prepare_rows();
+    {
+        // Trailing-edge horseshoes: one per strip, the strip's cores and component, evaluated
+        // with beta = 1 (leg_bend rotates the stretched frame and divides x by beta itself).
+        Stretched& te = kernel->te;
+        te.beta = 1.0;
+        te.fy = model_.y_symmetry;
+        te.fz = model_.z_symmetry;
+        te.z_plane = model_.z_symmetry_plane;
+        for (const Strip& S : lattice_.strips) {
+            const auto p0 = static_cast<std::size_t>(S.first_panel);
+            // The legs of the strip's panels run along x from a and b (build_lattice).
+            const Vector3d ta(S.le_a.x() + S.chord_a, lattice_.a[p0].y(), lattice_.a[p0].z());
+            const Vector3d tb(S.le_b.x() + S.chord_b, lattice_.b[p0].y(), lattice_.b[p0].z());
+            kernel->te_a.push_back(ta);
+            kernel->te_b.push_back(tb);
+            te.a.push_back(stretch(ta, beta_pg_));
+            te.b.push_back(stretch(tb, beta_pg_));
+            te.component.push_back(st.component[p0]);
+            te.core_in.push_back(st.core_in[p0]);
+            te.core_x.push_back(st.core_x[p0]);
+        }
+        te.prepare_rows();
+    }
     // Rows: flow tangency at every control point, except the last control point of each strip
     // of a surface that sheds no wake (NOWAKE), whose row states instead that the strip's
     // circulations sum to zero: such a surface (e.g. a fuselage side plate) carries lift through
@@ -450,48 +479,7 @@ SteadySolver::SteadySolver(const Model& model, Lattice lattice, double mach, Ste
     }
     kernel_ = std::move(kernel);
     mid_ = lattice_.bound_point;
-    // Trefftz plane: the wake of strip t is a pair of infinite 2-D vortices at its edges (the
-    // trailing legs far downstream); wash at the centre of strip s per unit circulation of t.
-    const auto ns = lattice_.strips.size();
-    trefftz_.setZero(static_cast<Eigen::Index>(2 * ns), static_cast<Eigen::Index>(ns));
-    for (std::size_t s = 0; s < ns; ++s) {
-        const Strip& S = lattice_.strips[s];
-        const Eigen::Vector2d c(S.le_mid.y(), S.le_mid.z());
-        for (std::size_t t = 0; t < ns; ++t) {
-            const Strip& T = lattice_.strips[t];
-            if (!T.sheds_wake) continue;
-            auto point_vortex = [&](const Vector3d& q, double sign) {
-                // Vortex along +x through q: v = G/(2 pi) x-hat x (P - q) / |P - q|^2.
-                const double dy = c.x() - q.y(), dz = c.y() - q.z();
-                const double r2 = dy * dy + dz * dz;
-                if (r2 <= 1e-24) return;
-                const double k = sign / (2.0 * std::numbers::pi * r2);
-                trefftz_(static_cast<Eigen::Index>(2 * s), static_cast<Eigen::Index>(t)) += -k * dz;
-                trefftz_(static_cast<Eigen::Index>(2 * s + 1), static_cast<Eigen::Index>(t)) +=
-                    k * dy;
-            };
-            // Legs: b -> infinity (+x) and infinity -> a (-x); images of the symmetry planes
-            // with their sense reversed by each reflection.
-            const double fy = model_.y_symmetry, fz = model_.z_symmetry;
-            const double zp = model_.z_symmetry_plane;
-            auto my = [](const Vector3d& q) { return Vector3d(q.x(), -q.y(), q.z()); };
-            auto mz = [&](const Vector3d& q) { return Vector3d(q.x(), q.y(), 2.0 * zp - q.z()); };
-            point_vortex(T.le_b, 1.0);
-            point_vortex(T.le_a, -1.0);
-            if (fy != 0.0) {
-                point_vortex(my(T.le_a), fy);
-                point_vortex(my(T.le_b), -fy);
-            }
-            if (fz != 0.0) {
-                point_vortex(mz(T.le_a), fz);
-                point_vortex(mz(T.le_b), -fz);
-                if (fy != 0.0) {
-                    point_vortex(my(mz(T.le_b)), fy * fz);
-                    point_vortex(my(mz(T.le_a)), -fy * fz);
-                }
-            }
-        }
-    }
+    trefftz_x_ = trefftz_plane(Vector3d::UnitX());
 }
 
 VectorXd SteadySolver::rhs(const VectorXd& deflection, const Vector3d& v, const Vector3d& w) const {
@@ -511,8 +499,8 @@ VectorXd SteadySolver::rhs(const VectorXd& deflection, const Vector3d& v, const 
     return b;
 }
 
-MatrixXd SteadySolver::solve_system(const MatrixXd& B) const {
-    if (!mirror_) return lu_.solve(B);
+MatrixXd SteadySolver::solve_system(const MatrixXd& B, bool refined) const {
+    if (!mirror_) return refined ? lu_.solve(B) : lu_.solve_unrefined(B);
     // Split every right-hand side into its symmetric and antisymmetric parts (rows of the orbit
     // representatives), solve the half systems, and assemble the circulations of both halves.
     const Mirror& M = *mirror_;
@@ -526,8 +514,10 @@ MatrixXd SteadySolver::solve_system(const MatrixXd& B) const {
         }
         return P;
     };
-    const MatrixXd Xs = M.lu_sym.solve(part(M.sym, 1.0));
-    const MatrixXd Xa = M.lu_anti.solve(part(M.anti, -1.0));
+    const MatrixXd Xs =
+        refined ? M.lu_sym.solve(part(M.sym, 1.0)) : M.lu_sym.solve_unrefined(part(M.sym, 1.0));
+    const MatrixXd Xa = refined ? M.lu_anti.solve(part(M.anti, -1.0))
+                                : M.lu_anti.solve_unrefined(part(M.anti, -1.0));
     MatrixXd G = MatrixXd::Zero(B.rows(), K);
     auto add = [&](const std::vector<int>& rows, const MatrixXd& X, double f) {
         for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -623,17 +613,209 @@ MatrixXd SteadySolver::induced_at_bound(const MatrixXd& gamma) const {
     return U;
 }
 
-SteadySolver::Units SteadySolver::units(const VectorXd& deflection) const {
+Vector3d SteadySolver::wake_direction(const FlowState& state) const {
+    if (options_.trailing_legs == TrailingLegs::body_axis || model_.z_symmetry != 0 ||
+        (model_.y_symmetry != 0 && state.beta != 0.0))
+        return Vector3d::UnitX();
+    return freestream_geometry(state.alpha, state.beta);
+}
+
+SteadySolver::Trefftz SteadySolver::trefftz_plane(const Vector3d& d) const {
+    // The far wake of strip t is a pair of infinite 2-D vortices through its trailing-edge
+    // points, in the plane normal to the legs (basis e1, e2, e1 x e2 = d; y, z for legs along x);
+    // wash at the centre of strip s per unit circulation of t.
+    Trefftz tp;
+    tp.d = d;
+    tp.e1 = (Vector3d::UnitY() - d.y() * d).normalized();
+    tp.e2 = d.cross(tp.e1);
+    const auto ns = lattice_.strips.size();
+    const std::vector<Vector3d>& ta = kernel_->te_a;
+    const std::vector<Vector3d>& tb = kernel_->te_b;
+    auto plane = [&](const Vector3d& q) { return Eigen::Vector2d(q.dot(tp.e1), q.dot(tp.e2)); };
+    tp.wash.setZero(static_cast<Eigen::Index>(2 * ns), static_cast<Eigen::Index>(ns));
+    tp.l.resize(ns);
+    for (std::size_t t = 0; t < ns; ++t) {
+        const Vector3d e = tb[t] - ta[t];
+        tp.l[t] = e.dot(tp.e1) * tp.e1 + e.dot(tp.e2) * tp.e2;
+    }
+    const double fy = model_.y_symmetry, fz = model_.z_symmetry;
+    const double zp = model_.z_symmetry_plane;
+    auto my = [](const Vector3d& q) { return Vector3d(q.x(), -q.y(), q.z()); };
+    auto mz = [&](const Vector3d& q) { return Vector3d(q.x(), q.y(), 2.0 * zp - q.z()); };
+    for (std::size_t s = 0; s < ns; ++s) {
+        const Strip& S = lattice_.strips[s];
+        const Eigen::Vector2d c = plane(S.le_mid + S.chord * Vector3d::UnitX());
+        for (std::size_t t = 0; t < ns; ++t) {
+            const Strip& T = lattice_.strips[t];
+            if (!T.sheds_wake) continue;
+            auto point_vortex = [&](const Vector3d& q3, double sign) {
+                // Vortex along d through q: v = G/(2 pi) d x (P - q) / |P - q|^2.
+                const Eigen::Vector2d q = plane(q3);
+                const double dy = c.x() - q.x(), dz = c.y() - q.y();
+                const double r2 = dy * dy + dz * dz;
+                if (r2 <= 1e-24) return;
+                const double k = sign / (2.0 * std::numbers::pi * r2);
+                tp.wash(static_cast<Eigen::Index>(2 * s), static_cast<Eigen::Index>(t)) += -k * dz;
+                tp.wash(static_cast<Eigen::Index>(2 * s + 1), static_cast<Eigen::Index>(t)) +=
+                    k * dy;
+            };
+            // Legs: b -> infinity (+d) and infinity -> a (-d); images of the symmetry planes
+            // with their sense reversed by each reflection (legs along x, or y images with d in
+            // the x-z plane: wake_direction).
+            point_vortex(tb[t], 1.0);
+            point_vortex(ta[t], -1.0);
+            if (fy != 0.0) {
+                point_vortex(my(ta[t]), fy);
+                point_vortex(my(tb[t]), -fy);
+            }
+            if (fz != 0.0) {
+                point_vortex(mz(ta[t]), fz);
+                point_vortex(mz(tb[t]), -fz);
+                if (fy != 0.0) {
+                    point_vortex(my(mz(tb[t])), fy * fz);
+                    point_vortex(my(mz(ta[t])), -fy * fz);
+                }
+            }
+        }
+    }
+    return tp;
+}
+
+SteadySolver::LegBend SteadySolver::leg_bend(const Vector3d& d) const {
+    // The legs of strip s behind its trailing edge along d instead of x: the trailing-edge
+    // horseshoe with legs along d less the one with legs along x (their bound segments cancel).
+    // Legs along d are legs along x in the stretched frame rotated by R (rows d_s, e1, e2,
+    // d_s = the stretched direction): the kernel runs there, the velocity is rotated back. A y
+    // image commutes with R (d in the x-z plane, wake_direction); with beta = 1 in the kernel,
+    // x is divided by the Prandtl-Glauert factor here.
+    const Stretched& te = kernel_->te;
+    const Vector3d ds = stretch(d, beta_pg_).normalized();
+    Eigen::Matrix3d R;
+    const Vector3d e1 = (Vector3d::UnitY() - ds.y() * ds).normalized();
+    R.row(0) = ds.transpose();
+    R.row(1) = e1.transpose();
+    R.row(2) = ds.cross(e1).transpose();
+    Stretched rot;
+    rot.beta = 1.0;
+    rot.fy = te.fy;
+    rot.fz = 0.0;  // wake_direction: no z image with bent legs
+    rot.z_plane = te.z_plane;
+    rot.component = te.component;
+    rot.core_in = te.core_in;
+    rot.core_x = te.core_x;
+    for (std::size_t t = 0; t < te.a.size(); ++t) {
+        rot.a.push_back(R * te.a[t]);
+        rot.b.push_back(R * te.b[t]);
+    }
+    rot.prepare_rows();
+    const int n = lattice_.size();
+    const auto ns = static_cast<Eigen::Index>(te.a.size());
+    LegBend lb;
+    lb.C.setZero(n, ns);
+    lb.U.setZero(3 * n, ns);
+    Eigen::ArrayXd vx, vy, vz, wx, wy, wz;
+    Eigen::ArrayXf fx, fy, fz, gx, gy, gz;
+    const bool single = options_.single_precision;
+    auto bend = [&](const Vector3d& x, int comp, Eigen::ArrayXd& dx, Eigen::ArrayXd& dy,
+                    Eigen::ArrayXd& dz) {
+        const Vector3d p = stretch(x, beta_pg_);
+        if (single) {
+            // As the influence matrix: the velocities in single precision.
+            te.row_f(p, comp, fx, fy, fz);
+            rot.row_f(R * p, comp, gx, gy, gz);
+            vx = fx.cast<double>();
+            vy = fy.cast<double>();
+            vz = fz.cast<double>();
+            wx = gx.cast<double>();
+            wy = gy.cast<double>();
+            wz = gz.cast<double>();
+        } else {
+            te.row(p, comp, vx, vy, vz);
+            rot.row(R * p, comp, wx, wy, wz);
+        }
+        // R^T w - v, x component back to physical space.
+        dx = (R(0, 0) * wx.head(ns) + R(1, 0) * wy.head(ns) + R(2, 0) * wz.head(ns) - vx.head(ns)) /
+             beta_pg_;
+        dy = R(0, 1) * wx.head(ns) + R(1, 1) * wy.head(ns) + R(2, 1) * wz.head(ns) - vy.head(ns);
+        dz = R(0, 2) * wx.head(ns) + R(1, 2) * wy.head(ns) + R(2, 2) * wz.head(ns) - vz.head(ns);
+    };
+    Eigen::ArrayXd dx, dy, dz;
+    for (int i = 0; i < n; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        const int comp = component_of(model_, lattice_, ii);
+        if (!closure_row_[ii]) {
+            bend(lattice_.control_point[ii], comp, dx, dy, dz);
+            const Vector3d& nrm = lattice_.normal[ii];
+            lb.C.row(i) = (dx * nrm.x() + dy * nrm.y() + dz * nrm.z()).matrix().transpose();
+        }
+        bend(mid_[ii], comp, dx, dy, dz);
+        lb.U.row(3 * i) = dx.matrix().transpose();
+        lb.U.row(3 * i + 1) = dy.matrix().transpose();
+        lb.U.row(3 * i + 2) = dz.matrix().transpose();
+    }
+    return lb;
+}
+
+SteadySolver::Units SteadySolver::solve_units(const MatrixXd& B, const Vector3d& d) const {
+    Units u;
+    u.G = solve_system(B);
+    if (d == Vector3d::UnitX()) {
+        u.U = induced_at_bound(u.G);
+        u.plane = trefftz_x_;
+        return u;
+    }
+    // Legs bent along d: (A + C S) G = B, S the strip sums (every horseshoe of a strip bends at
+    // the same trailing-edge points, so the change C S has the rank of the strip count), solved
+    // by the fixed-point iteration G <- A^-1 (B - C S G) with the factorisation of A, written as
+    // corrections dG_{k+1} = -A^-1 C S dG_k that shrink by the wake's influence on the lattice
+    // (about 20 times per step on the Ranger 2000), to 1e-9 of the largest circulation (seven
+    // corrections there). Corrections below 1e-3 of the circulations are solved without
+    // refinement (their relative error, 1e-5 with single-precision factors, leaves 1e-8 in G,
+    // the accuracy of the single-precision path).
+    const LegBend lb = leg_bend(d);
+    const auto ns = static_cast<Eigen::Index>(lattice_.strips.size());
+    const int n = lattice_.size();
+    auto strip_sums = [&](const MatrixXd& G) {
+        MatrixXd g = MatrixXd::Zero(ns, G.cols());
+        for (int i = 0; i < n; ++i) g.row(lattice_.strip[static_cast<std::size_t>(i)]) += G.row(i);
+        return g;
+    };
+    MatrixXd dG = solve_system(-lb.C * strip_sums(u.G));
+    u.G += dG;
+    const double scale = std::max(u.G.cwiseAbs().maxCoeff(), 1e-300);
+    const double tol = 1e-9;
+    bool converged = false;
+    for (int it = 0; it < 100 && !converged; ++it) {
+        const double size = dG.cwiseAbs().maxCoeff();
+        converged = size <= tol * scale;
+        if (converged) break;
+        dG = solve_system(-lb.C * strip_sums(dG), size > 1e-3 * scale);
+        u.G += dG;
+    }
+    if (!converged)
+        throw ConvergenceError(fmt::format(
+            "vlm: the trailing legs along the free stream ({:.4f}, {:.4f}, {:.4f}) did not "
+            "converge in 100 iterations; expected a wake clear of the lattice (or use body-axis "
+            "legs)",
+            d.x(), d.y(), d.z()));
+    const MatrixXd g = strip_sums(u.G);
+    u.U = induced_at_bound(u.G) + lb.U * g;
+    // Induced drag in the Trefftz plane normal to x, as with body-axis legs (the small-angle
+    // far wake): the plane normal to the bent legs put the Ranger 2000's Trefftz drag 10 to 25 %
+    // off its near-field drag in sideslip (against 2 to 4 % here), docs/vlm.md.
+    u.plane = trefftz_x_;
+    u.plane.d = d;
+    return u;
+}
+
+SteadySolver::Units SteadySolver::units(const VectorXd& deflection, const Vector3d& d) const {
     const int n = lattice_.size();
     MatrixXd B(n, 6);
     for (int k = 0; k < 3; ++k) {
         B.col(k) = rhs(deflection, Vector3d::Unit(k), Vector3d::Zero());
         B.col(k + 3) = rhs(deflection, Vector3d::Zero(), Vector3d::Unit(k));
     }
-    Units u;
-    u.G = solve_system(B);
-    u.U = induced_at_bound(u.G);
-    return u;
+    return solve_units(B, d);
 }
 
 MatrixXd SteadySolver::unit_circulations(const VectorXd& deflection) const {
@@ -664,11 +846,11 @@ SteadyResult SteadySolver::loads(const Units& u, const FlowState& s, bool with_d
     const Vector3d w = omega_geometry(model_.reference, s.p_hat, s.q_hat, s.r_hat);
     Eigen::Matrix<double, 6, 1> x;
     x << V, w;
-    return loads_from(u.G * x, u.U * x, s, with_detail);
+    return loads_from(u.G * x, u.U * x, s, u.plane, with_detail);
 }
 
 SteadyResult SteadySolver::loads_from(const VectorXd& g, const VectorXd& vind, const FlowState& s,
-                                      bool with_detail) const {
+                                      const Trefftz& tp, bool with_detail) const {
     const Reference& ref = model_.reference;
     const Vector3d V = freestream_geometry(s.alpha, s.beta);
     const Vector3d w = omega_geometry(ref, s.p_hat, s.q_hat, s.r_hat);
@@ -729,15 +911,14 @@ SteadyResult SteadySolver::loads_from(const VectorXd& g, const VectorXd& vind, c
     const auto ns = lattice_.strips.size();
     VectorXd gs = VectorXd::Zero(static_cast<Eigen::Index>(ns));
     for (int i = 0; i < n; ++i) gs[lattice_.strip[static_cast<std::size_t>(i)]] += g[i];
-    const VectorXd vt = trefftz_ * gs;
+    const VectorXd vt = tp.wash * gs;
     Vector3d Ft = Vector3d::Zero();
     for (std::size_t t = 0; t < ns; ++t) {
         const Strip& S = lattice_.strips[t];
         if (!S.sheds_wake) continue;
-        const Vector3d l(0.0, S.le_b.y() - S.le_a.y(), S.le_b.z() - S.le_a.z());
-        const Vector3d vw(0.0, 0.5 * vt[static_cast<Eigen::Index>(2 * t)],
-                          0.5 * vt[static_cast<Eigen::Index>(2 * t + 1)]);
-        Ft += gs[static_cast<Eigen::Index>(t)] * (V + vw).cross(l);
+        const Vector3d vw = 0.5 * vt[static_cast<Eigen::Index>(2 * t)] * tp.e1 +
+                            0.5 * vt[static_cast<Eigen::Index>(2 * t + 1)] * tp.e2;
+        Ft += gs[static_cast<Eigen::Index>(t)] * (V + vw).cross(tp.l[t]);
     }
     if (model_.y_symmetry == 1) Ft = Vector3d(2.0 * Ft.x(), 0.0, 2.0 * Ft.z());
     const auto wt = aero::wind_from_body(-Ft.x() / qS, Ft.y() / qS, -Ft.z() / qS, s.alpha, s.beta);
@@ -753,6 +934,7 @@ SteadyResult SteadySolver::loads_from(const VectorXd& g, const VectorXd& vind, c
     r.span_efficiency = r.CD_trefftz != 0.0
                             ? r.CL_trefftz * r.CL_trefftz / (std::numbers::pi * AR * r.CD_trefftz)
                             : 0.0;
+    r.wake_direction = tp.d;
     if (with_detail) {
         r.gamma = g;
         for (std::size_t t = 0; t < ns; ++t) {
@@ -779,7 +961,7 @@ VectorXd full_deflection(const Lattice& L, const VectorXd& d) {
 SteadyResult SteadySolver::solve(const FlowState& state) const {
     FlowState s = state;
     s.deflection = full_deflection(lattice_, state.deflection);
-    return loads(units(s.deflection), s, true);
+    return loads(units(s.deflection, wake_direction(s)), s, true);
 }
 
 Derivatives SteadySolver::derivatives(const FlowState& state) const {
@@ -803,11 +985,14 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
         d1[k] += 1.0;
         B.col(6 + k) = rhs(d1, V, w) - b0;
     }
-    const MatrixXd G_all = solve_system(B);
-    const MatrixXd U_all = induced_at_bound(G_all);
+    // Legs frozen at the state's direction for every derivative.
+    Units all = solve_units(B, wake_direction(s));
+    const MatrixXd& G_all = all.G;
+    const MatrixXd& U_all = all.U;
     Units u;
     u.G = G_all.leftCols(6);
     u.U = U_all.leftCols(6);
+    u.plane = all.plane;
     Derivatives d;
     d.state = loads(u, s, true);
     auto vec = [](const SteadyResult& r) {
@@ -874,9 +1059,9 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
         const VectorXd v0 = u.U * x;
         for (Eigen::Index k = 0; k < nc; ++k) {
             const SteadyResult rp =
-                loads_from(g0 + h * G_all.col(6 + k), v0 + h * U_all.col(6 + k), s, false);
+                loads_from(g0 + h * G_all.col(6 + k), v0 + h * U_all.col(6 + k), s, u.plane, false);
             const SteadyResult rm =
-                loads_from(g0 - h * G_all.col(6 + k), v0 - h * U_all.col(6 + k), s, false);
+                loads_from(g0 - h * G_all.col(6 + k), v0 - h * U_all.col(6 + k), s, u.plane, false);
             d.control.col(k) = (vec(rp) - vec(rm)) / (2 * h);
             d.control_stability.col(k) =
                 (stab(rp, s.alpha, s.beta) - stab(rm, s.alpha, s.beta)) / (2 * h);

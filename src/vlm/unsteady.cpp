@@ -3,8 +3,9 @@
 ///
 /// Layout. The lattice's strips are grouped into chains (consecutive strips of one surface copy
 /// sharing an edge), ordered so that each strip's b edge is the next strip's a edge. A chain of
-/// m strips n_chord panels deep is a structured grid of (n_chord + 1) x (m + 1) vortex points:
-/// rows 0 .. n_chord - 1 on the panels' bound segments (quarter points), row n_chord on the shed
+/// m strips n_chord panels deep is a structured grid of (n_chord + 2) x (m + 1) vortex points:
+/// rows 0 .. n_chord - 1 on the panels' bound segments (quarter points), row n_chord on the
+/// trailing edge, row n_chord + 1 on the shed
 /// line behind the trailing edge. Chains of equal depth share one grid, side by side; the wake of
 /// every shedding chain is one more grid whose rows are the shed rows, newest first. In a grid
 /// the ring (row k, column e) has corners (k, e), (k, e+1), (k+1, e+1), (k+1, e) and circulation
@@ -87,12 +88,14 @@ Vector3d trailing_edge(const Vector3d& le, double chord) {
 }
 
 /// Corners of the vortex ring of panel i: bound a, bound b, then the next panel's bound b and a;
-/// for the last panel of the strip the shed line, `shed` behind the trailing edge along x.
-std::array<Vector3d, 4> ring_corners(const Lattice& L, int i, double shed) {
+/// for the last panel of the strip the shed line, `shed` behind the trailing edge along the unit
+/// vector `dir`.
+std::array<Vector3d, 4> ring_corners(const Lattice& L, int i, double shed,
+                                     const Vector3d& dir = Vector3d::UnitX()) {
     const auto ii = static_cast<std::size_t>(i);
     const Strip& st = L.strips[static_cast<std::size_t>(L.strip[ii])];
     if (i + 1 < st.first_panel + st.n_panels) return {L.a[ii], L.b[ii], L.b[ii + 1], L.a[ii + 1]};
-    const Vector3d dx = shed * Vector3d::UnitX();
+    const Vector3d dx = shed * dir;
     return {L.a[ii], L.b[ii], trailing_edge(st.le_b, st.chord_b) + dx,
             trailing_edge(st.le_a, st.chord_a) + dx};
 }
@@ -335,10 +338,14 @@ Vector3d cored_semi_infinite(const Vector3d& p, const Vector3d& x1, const Vector
 struct LatticeGrid {
     Grid g;
     int n_chord = 0;
-    std::vector<int> panel;       ///< n_chord x cols: panel of ring (k, e), -1 in chain-end columns
-    std::vector<Vector3d> point;  ///< physical points, (n_chord + 1) x cols
-    std::vector<Vector3d> te;     ///< trailing-edge point of each column
-    std::vector<int> col_strip;   ///< strip of each column (the a-edge's, else the b-edge's)
+    /// (n_chord + 1) x cols: panel of ring (k, e), -1 in chain-end columns; ring row n_chord, from
+    /// the trailing edge to the shed line, is the last panel's ring continued (its sides bend at
+    /// the trailing edge, as the steady solver's legs do).
+    std::vector<int> panel;
+    std::vector<Vector3d> point;  ///< physical points, (n_chord + 2) x cols
+    [[nodiscard]] int ring_rows() const { return n_chord + 1; }
+    std::vector<Vector3d> te;    ///< trailing-edge point of each column
+    std::vector<int> col_strip;  ///< strip of each column (the a-edge's, else the b-edge's)
 };
 
 /// Chordwise segment of a lattice grid (for the loads).
@@ -471,6 +478,7 @@ struct UnsteadySolver::Impl {
     std::vector<Vector3d> wake_trailing_edge;  // per column: trailing-edge point (geometry axes)
     std::vector<Vector3d> wake_shed;           // per column: shed point (geometry axes)
     double shed_distance = -1.0;               // shed line behind the trailing edge [m]
+    Vector3d shed_dir = Vector3d::UnitX();     // ... along this unit vector (geometry axes)
     Grid wake;
     ArrayXd ax, ay, az;  // wake points in the still-air frame (the frame of the motion at t0)
     bool truncated = false;
@@ -505,7 +513,7 @@ struct UnsteadySolver::Impl {
 
     Impl(const Model& m, Lattice lat, UnsteadyOptions o);
     void build_geometry();
-    void set_shed(double distance);
+    void set_shed(double distance, const Vector3d& dir);
     void assemble();
     void build_lattice_influence();
     void pose_at(double t, Pose& p) const;
@@ -747,10 +755,10 @@ void UnsteadySolver::Impl::build_geometry() {
         G.g.cols += static_cast<int>(ch.size()) + 1;
     }
     for (LatticeGrid& G : grids) {
-        G.g.reserve(G.n_chord + 1, G.g.cols);
-        G.g.rows = G.n_chord + 1;
-        G.panel.assign(static_cast<std::size_t>(G.n_chord * G.g.cols), -1);
-        G.point.assign(static_cast<std::size_t>((G.n_chord + 1) * G.g.cols), Vector3d::Zero());
+        G.g.reserve(G.n_chord + 2, G.g.cols);
+        G.g.rows = G.n_chord + 2;
+        G.panel.assign(static_cast<std::size_t>((G.n_chord + 1) * G.g.cols), -1);
+        G.point.assign(static_cast<std::size_t>((G.n_chord + 2) * G.g.cols), Vector3d::Zero());
         G.te.assign(static_cast<std::size_t>(G.g.cols), Vector3d::Zero());
         G.col_strip.assign(static_cast<std::size_t>(G.g.cols), 0);
     }
@@ -776,10 +784,12 @@ void UnsteadySolver::Impl::build_geometry() {
                 }
             }
             const auto last = static_cast<std::size_t>(S.first_panel + nc - 1);
+            if (!b_edge) G.panel[static_cast<std::size_t>(nc * C + col)] = static_cast<int>(last);
             const Vector3d te =
                 b_edge ? trailing_edge(S.le_b, S.chord_b) : trailing_edge(S.le_a, S.chord_a);
             G.te[static_cast<std::size_t>(col)] = te;
-            G.point[static_cast<std::size_t>(nc * C + col)] = te;  // shed line: set_shed
+            G.point[static_cast<std::size_t>(nc * C + col)] = te;
+            G.point[static_cast<std::size_t>((nc + 1) * C + col)] = te;  // shed line: set_shed
             if (sheds) {
                 wake_col_strip.push_back(G.col_strip[static_cast<std::size_t>(col)]);
                 wake_trailing_edge.push_back(te);
@@ -795,7 +805,7 @@ void UnsteadySolver::Impl::build_geometry() {
     };
     for (LatticeGrid& G : grids)
         G.g.set_cores(column_cores(G.col_strip), column_cores(left_of(G.col_strip)), split_sides,
-                      G.n_chord + 1);
+                      G.n_chord + 2);
     wake_core = column_cores(wake_col_strip);
     wake_core_left = column_cores(left_of(wake_col_strip));
     Index most = 0;
@@ -808,14 +818,16 @@ void UnsteadySolver::Impl::build_geometry() {
     for (Scratch& sc : scratch) sc.reserve(most);
 }
 
-void UnsteadySolver::Impl::set_shed(double distance) {
+void UnsteadySolver::Impl::set_shed(double distance, const Vector3d& dir) {
     // The lattice grids' last row and the wake's first row: the shed line, `distance` behind the
-    // trailing edges; then the stretched points, segment lengths and chordwise segments.
+    // trailing edges along `dir`; then the stretched points, segment lengths and chordwise
+    // segments.
     shed_distance = distance;
-    const Vector3d dx = distance * Vector3d::UnitX();
+    shed_dir = dir;
+    const Vector3d dx = distance * dir;
     for (LatticeGrid& G : grids)
         for (std::size_t e = 0; e < G.te.size(); ++e)
-            G.point[static_cast<std::size_t>(G.n_chord * G.g.cols) + e] = G.te[e] + dx;
+            G.point[static_cast<std::size_t>((G.n_chord + 1) * G.g.cols) + e] = G.te[e] + dx;
     wake_shed.resize(wake_trailing_edge.size());
     for (std::size_t e = 0; e < wake_shed.size(); ++e) wake_shed[e] = wake_trailing_edge[e] + dx;
     chord.clear();
@@ -837,6 +849,8 @@ void UnsteadySolver::Impl::set_shed(double distance) {
                 s.left = e > 0 ? G.panel[static_cast<std::size_t>(j - 1)] : -1;
                 s.right = G.panel[static_cast<std::size_t>(j)];
                 if (s.left < 0 && s.right < 0) continue;
+                // The last rings' sides are loaded up to the trailing edge (row n_chord) only:
+                // their part behind it, to the shed line, is wake (as the steady solver's legs).
                 const Vector3d& p1 = G.point[static_cast<std::size_t>(j)];
                 const Vector3d& p2 = G.point[static_cast<std::size_t>(j + C)];
                 s.mid = 0.5 * (p1 + p2);
@@ -860,7 +874,7 @@ void UnsteadySolver::Impl::assemble() {
         const Grid& g = G.g;
         const Index C = g.cols;
         auto panel = [&](Index k, Index e) -> int {
-            if (k < 0 || k >= G.n_chord || e < 0 || e >= C) return -1;
+            if (k < 0 || k >= G.ring_rows() || e < 0 || e >= C) return -1;
             return G.panel[static_cast<std::size_t>(k * C + e)];
         };
         for (int i = 0; i < N; ++i) {
@@ -874,10 +888,12 @@ void UnsteadySolver::Impl::assemble() {
                 const Image mirror = im == 0 ? Image{1.0, false, false} : images[im - 1];
                 const Vector3d p = stretch(reflect_point(cp[ii], mirror), beta);
                 const Vector3d nn = mirror.f * reflect_vector(n0[ii], mirror);
-                for (Index k = 0; k <= G.n_chord; ++k)
+                for (Index k = 0; k <= G.ring_rows(); ++k)
                     for (Index e = 0; e < C; ++e) {
                         const Index j = k * C + e;
-                        if (e + 1 < C) {
+                        // (The trailing-edge row's spanwise segments carry nothing: the last
+                        // ring continued on both sides.)
+                        if (e + 1 < C && k != G.n_chord) {
                             Vector3d v =
                                 cored_segment(p, g.point(j), g.point(j + 1), g.core[cls][e], tiny);
                             v.x() /= beta;
@@ -885,7 +901,7 @@ void UnsteadySolver::Impl::assemble() {
                             add(panel(k, e), w);
                             add(panel(k - 1, e), -w);
                         }
-                        if (k < G.n_chord) {
+                        if (k < G.ring_rows()) {
                             // Each ring's side with its own strip's core.
                             Vector3d v =
                                 cored_segment(p, g.point(j), g.point(j + C), g.core[cls][e], tiny);
@@ -940,19 +956,19 @@ void UnsteadySolver::Impl::build_lattice_influence() {
                     const Grid& g = G.g;
                     const Index C = g.cols;
                     auto add = [&](Index k, Index c, const Vector3d& v) {
-                        if (k < 0 || k >= G.n_chord || c < 0 || c >= C) return;
+                        if (k < 0 || k >= G.ring_rows() || c < 0 || c >= C) return;
                         const int j = G.panel[static_cast<std::size_t>(k * C + c)];
                         if (j >= 0) col.row(j) += v.transpose();
                     };
-                    for (Index k = 0; k <= G.n_chord; ++k)
+                    for (Index k = 0; k <= G.ring_rows(); ++k)
                         for (Index c = 0; c < C; ++c) {
                             const Index j = k * C + c;
-                            if (c + 1 < C) {
+                            if (c + 1 < C && k != G.n_chord) {
                                 const Vector3d v = seg(g.point(j), g.point(j + 1), g.core[cls][c]);
                                 add(k, c, v);
                                 add(k - 1, c, -v);
                             }
-                            if (k < G.n_chord) {
+                            if (k < G.ring_rows()) {
                                 const Vector3d v = seg(g.point(j), g.point(j + C), g.core[cls][c]);
                                 add(k, c, -v);
                                 add(k, c - 1,
@@ -1203,7 +1219,9 @@ void UnsteadySolver::Impl::start_steady() {
 
 void UnsteadySolver::Impl::loads() {
     // Kutta-Joukowski on every lattice segment with its local velocity, plus rho dG/dt A n.
-    const Index n_load = N + static_cast<Index>(chord.size());
+    // Lattice velocities at the bound points, and at the chordwise segments when their loads
+    // take the induced velocity (UnsteadyOptions::chordwise_induced).
+    const Index n_load = N + (opt.chordwise_induced ? static_cast<Index>(chord.size()) : 0);
     if (lattice_influence_t.size() > 0) {
         // Rigid lattice: one product with the influence built at `start`.
         parallel(n_load, [this](Index b, Index e, Scratch&) {
@@ -1255,7 +1273,11 @@ void UnsteadySolver::Impl::loads() {
                 ++nw;
             }
         if (nw > 0) vw /= nw;
-        const Vector3d v = kinematic(c.mid) + v_lattice.col(N + static_cast<Index>(q)) + vw;
+        // The onset flow only (the steady solver's and AVL's legs), or with the induced velocity.
+        const Vector3d v =
+            opt.chordwise_induced
+                ? Vector3d(kinematic(c.mid) + v_lattice.col(N + static_cast<Index>(q)) + vw)
+                : kinematic(c.mid);
         const Vector3d f = s * v.cross(c.l);
         F_kj += f;
         M_kj += (c.mid - ref).cross(f);
@@ -1372,14 +1394,6 @@ const UnsteadyStep& UnsteadySolver::start(const aero::Motion& motion) {
     m.max_rows = static_cast<int>(rows);
     m.near_rows =
         static_cast<Index>(std::ceil(m.opt.near_wake * m.cref / (m.v0 * m.dt) - 1e-9)) + 1;
-    // The shed line, hence the influence matrix, depends on v0 dt: factorised again only when
-    // that changes.
-    const double shed = m.opt.shed_offset * m.v0 * m.dt;
-    if (shed != m.shed_distance) {
-        m.set_shed(shed);
-        m.assemble();
-        m.build_lattice_influence();
-    }
     // Control modes -> lattice controls.
     m.mode_control.assign(motion.mode_names.size(), -1);
     std::string missing;
@@ -1398,6 +1412,24 @@ const UnsteadyStep& UnsteadySolver::start(const aero::Motion& motion) {
             m.L.control_names.empty() ? std::string("none")
                                       : fmt::format("{}", fmt::join(m.L.control_names, ", "))));
     m.motion = motion;
+    // The shed line: shed_offset v0 dt behind the trailing edges along the free stream of the
+    // first instant (the direction the wake leaves in, so that a steady run has the geometry of
+    // the steady solver's legs along the free stream); along body x for the planar wake. The
+    // influence matrix depends on it: built and factorised again only when it changes.
+    {
+        Pose p0;
+        m.pose_at(m.t0, p0);
+        const double speed = p0.vinf.norm();
+        const Vector3d dir = m.opt.wake != WakeModel::planar && speed > 0.0 && p0.vinf.x() > 0.0
+                                 ? Vector3d(p0.vinf / speed)
+                                 : Vector3d(Vector3d::UnitX());
+        const double shed = m.opt.shed_offset * m.v0 * m.dt;
+        if (shed != m.shed_distance || dir != m.shed_dir) {
+            m.set_shed(shed, dir);
+            m.assemble();
+            m.build_lattice_influence();
+        }
+    }
     // Storage for the run (no allocation in the steps).
     const int C = m.wake_cols;
     m.wake.reserve(m.max_rows + 2, C);
@@ -1678,6 +1710,7 @@ UnsteadyWake UnsteadySolver::wake() const {
         w.ring[static_cast<std::size_t>(e)] = m.wake_te[static_cast<std::size_t>(e)] >= 0;
     w.lattice_gamma = m.gamma;
     w.shed_distance = m.shed_distance;
+    w.shed_direction = m.shed_dir;
     return w;
 }
 
@@ -1701,7 +1734,7 @@ void write_vtu(const std::filesystem::path& path, const Lattice& lattice,
     std::vector<int> kind;
     std::vector<Vector3d> pts;
     for (int i = 0; i < N; ++i) {
-        const auto c = ring_corners(lattice, i, wake.shed_distance);
+        const auto c = ring_corners(lattice, i, wake.shed_distance, wake.shed_direction);
         const std::size_t b = pts.size();
         pts.insert(pts.end(), c.begin(), c.end());
         cells.push_back({b, b + 1, b + 2, b + 3});

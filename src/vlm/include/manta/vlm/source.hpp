@@ -2,8 +2,10 @@
 /// @file source.hpp
 /// The vortex-lattice method as an `aero::AeroSource`: steady coefficients at any flight state
 /// and control setting (solvers cached per Mach number: one influence matrix and factorisation
-/// each), the viscous drag build-up added when the aircraft's shape is known and a Reynolds
-/// number is given, and the unsteady lattice along a motion.
+/// each; trailing legs along the free stream, TrailingLegs::freestream, the steady limit of the
+/// unsteady lattice that `replay` and `start_unsteady` run), the viscous drag build-up added when
+/// the aircraft's shape is known and a Reynolds number is given, and the unsteady lattice along a
+/// motion.
 
 #include <map>
 #include <memory>

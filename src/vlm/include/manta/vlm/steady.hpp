@@ -72,6 +72,8 @@ struct SteadyResult {
     double CD_profile = 0.0;
     double span_efficiency = 0.0;  ///< CL_trefftz^2 / (pi AR CD_trefftz), AR = b^2 / S
     Eigen::VectorXd gamma;         ///< circulation of every horseshoe per unit free-stream speed
+    /// Direction of the trailing legs behind the trailing edge (geometry axes, unit).
+    Eigen::Vector3d wake_direction = Eigen::Vector3d::UnitX();
     std::vector<StripLoad> strips;
 };
 
@@ -104,6 +106,24 @@ struct Derivatives {
     SteadyResult state;            ///< the solution at the state itself
 };
 
+/// The path of the steady solver's trailing legs. Both run from the bound vortex along the chord
+/// (body x) to the trailing edge, over the surface; behind it:
+/// * body_axis (default): along the body (geometry) x axis to infinity, the small-angle
+///   convention of AVL 3.40 and of classical vortex-lattice codes (the steady limit of the
+///   unsteady solver's WakeModel::planar);
+/// * freestream: along the free stream of the state solved, V_inf = freestream_geometry(alpha,
+///   beta), the direction in which the unsteady solver's wake is convected (WakeModel::prescribed,
+///   its default), so that an unsteady run held at a constant state converges to the steady
+///   solution (docs/vlm.md, Trailing legs). VlmSource, hence the tables and the replay, uses it.
+/// The two coincide at alpha = beta = 0. The influence matrix is built and factorised once with
+/// body-axis legs; the bend at the trailing edge changes it by a matrix of rank = number of
+/// strips (every horseshoe of a strip bends at the same two trailing-edge points), which each
+/// solve adds by a fixed-point iteration with the one factorisation (about 40 ms more per solve
+/// on the Ranger 2000's 1 956 vortices). Stability derivatives are taken with the legs frozen at
+/// the state's direction. With a z symmetry image (AVL IZsym), or a y symmetry image (IYsym) at
+/// non-zero sideslip, the legs stay along body x.
+enum class TrailingLegs { freestream, body_axis };
+
 /// Vortex cores of the steady solver (AVL 3.40's defaults). Each horseshoe's bound segment and
 /// trailing legs have a finite core of radius r_c (Scully profile: the induced velocity at
 /// distance r from a line is scaled by r^2 / (r^2 + r_c^2)), which depends on whether the point
@@ -125,6 +145,8 @@ struct SteadyOptions {
     double core_within_component = 1e-4;
     double core_between_components = 0.25;
     bool single_precision = true;
+    /// Where the trailing legs go behind the trailing edge (TrailingLegs).
+    TrailingLegs trailing_legs = TrailingLegs::body_axis;
 };
 
 /// The solver for one lattice and Mach number: influence matrix built and factorised once.
@@ -143,18 +165,40 @@ public:
     /// N x 6. Exposed for the unsteady solver and tests.
     [[nodiscard]] Eigen::MatrixXd unit_circulations(const Eigen::VectorXd& deflection) const;
 
+    /// Direction of the trailing legs behind the trailing edge for a state (geometry axes).
+    [[nodiscard]] Eigen::Vector3d wake_direction(const FlowState& state) const;
+
 private:
     struct Units;
     struct Kernel;  // the horseshoes in structure-of-arrays form
     struct Mirror;  // mirror symmetry: the two half systems
-    [[nodiscard]] Units units(const Eigen::VectorXd& deflection) const;
+    /// Trefftz plane normal to d (every solve uses d = x, solve_units) and the legs direction d:
+    /// wash at strip centres per unit strip circulation.
+    struct Trefftz {
+        Eigen::Vector3d d = Eigen::Vector3d::UnitX(), e1 = Eigen::Vector3d::UnitY(),
+                        e2 = Eigen::Vector3d::UnitZ();
+        Eigen::MatrixXd wash;            // 2 ns x ns, components along e1, e2
+        std::vector<Eigen::Vector3d> l;  // strip vectors projected on the plane
+    };
+    /// What bending the legs along d at the trailing edges adds: normal wash at the control
+    /// points (N x ns) and velocity at the force points (3N x ns) per unit strip circulation.
+    struct LegBend {
+        Eigen::MatrixXd C, U;
+    };
+    [[nodiscard]] Trefftz trefftz_plane(const Eigen::Vector3d& d) const;
+    [[nodiscard]] LegBend leg_bend(const Eigen::Vector3d& d) const;
+    /// Circulations and force-point velocities for the right-hand sides B with legs along d.
+    [[nodiscard]] Units solve_units(const Eigen::MatrixXd& B, const Eigen::Vector3d& d) const;
+    [[nodiscard]] Units units(const Eigen::VectorXd& deflection, const Eigen::Vector3d& d) const;
     [[nodiscard]] SteadyResult loads(const Units& u, const FlowState& s, bool with_detail) const;
     [[nodiscard]] SteadyResult loads_from(const Eigen::VectorXd& g, const Eigen::VectorXd& vind,
-                                          const FlowState& s, bool with_detail) const;
+                                          const FlowState& s, const Trefftz& tp,
+                                          bool with_detail) const;
     [[nodiscard]] Eigen::MatrixXd induced_at_bound(const Eigen::MatrixXd& gamma) const;
     /// Circulations for the right-hand sides B (N x K): the full factorisation, or the two half
-    /// systems of a mirror-symmetric lattice.
-    [[nodiscard]] Eigen::MatrixXd solve_system(const Eigen::MatrixXd& B) const;
+    /// systems of a mirror-symmetric lattice; `refined` false: single-precision factors without
+    /// iterative refinement (DenseLU::solve_unrefined).
+    [[nodiscard]] Eigen::MatrixXd solve_system(const Eigen::MatrixXd& B, bool refined = true) const;
     [[nodiscard]] Eigen::VectorXd rhs(const Eigen::VectorXd& deflection, const Eigen::Vector3d& v,
                                       const Eigen::Vector3d& w) const;
 
@@ -166,8 +210,7 @@ private:
     detail::DenseLU lu_;  // the whole system (no mirror symmetry)
     std::shared_ptr<const Kernel> kernel_;
     std::shared_ptr<const Mirror> mirror_;  // null: no mirror symmetry
-    // Trefftz plane: normal wash at strip centres per unit strip circulation.
-    Eigen::MatrixXd trefftz_;
+    Trefftz trefftz_x_;                     // the Trefftz plane of body-axis legs
     std::vector<Eigen::Vector3d> mid_;  // force points on the bound segments (Lattice::bound_point)
     std::vector<char> closure_row_;     // 1: row states zero net strip circulation (NOWAKE)
 };

@@ -107,6 +107,11 @@ struct UnsteadyOptions {
     bool ignore_missing_controls = false;
     /// Include the velocity of control points rotating about their hinge (deflection rate).
     bool hinge_rate = true;
+    /// Kutta-Joukowski loads of the chordwise segments (the rings' sides, from one bound segment
+    /// to the next, the last to the trailing edge) with the velocity induced by the lattice and
+    /// the wake added to the onset flow. false: the onset flow only (free stream, rotation), as
+    /// the steady solver's legs and AVL's, so that a steady run gives the steady solution.
+    bool chordwise_induced = false;
     /// Record the span loading in every step.
     bool span_loading = true;
     /// Wake length [reference chords] behind the trailing edge whose velocity at the bound
@@ -164,6 +169,8 @@ struct UnsteadyWake {
     bool tail = false;          ///< oldest row continued to infinity (UnsteadyOptions::wake_tail)
     Eigen::VectorXd lattice_gamma;  ///< circulation of the lattice's rings [m^2/s], panel order
     double shed_distance = 0.0;     ///< shed line behind the trailing edges [m] (last rings' end)
+    /// Direction of the shed line from the trailing edges (geometry axes, unit).
+    Eigen::Vector3d shed_direction = Eigen::Vector3d::UnitX();
 };
 
 /// The unsteady solver for one lattice. The geometry is prepared at construction; the influence

@@ -64,6 +64,9 @@ public:
     /// Ranger 2000 and b737 lattices).
     [[nodiscard]] Eigen::MatrixXd solve(Eigen::MatrixXd b, double tolerance = 1e-8) const;
     [[nodiscard]] Eigen::VectorXd solve(Eigen::VectorXd b) const;
+    /// X from the factors alone, without refinement (single-precision factors: relative error
+    /// about the probe's factor, 1e-5 for the lattices here; double-precision factors: `solve`).
+    [[nodiscard]] Eigen::MatrixXd solve_unrefined(Eigen::MatrixXd b) const;
 
 private:
     Eigen::Index n_ = 0;
