@@ -200,8 +200,13 @@ ManoeuvreSpec read(const ConfigNode& root) {
         s.throttle = pair_or(p, "throttle", s.throttle, NumberSpec::range(0.0, 1.0, "-"));
         s.altitude_range =
             pair_or(p, "altitude", s.altitude_range, NumberSpec::range(-500.0, 30000.0, "m"));
+        s.speed_path = p.has("speed");
         s.speed_range = pair_or(p, "speed", s.speed_range, NumberSpec::range(1.0, 1000.0, "m/s"));
         if (p.has("mach_max")) s.mach_max = p.number("mach_max", NumberSpec::range(0.01, 5.0, "-"));
+        if (p.has_angle("bank")) {
+            // phi = atan2(c32, c33) jumps at +-180 deg: the range must stay inside (-180, 180)
+            s.bank_range = p.angle_range("bank", NumberSpec::range(-3.14, 3.14, "rad"));
+        }
         s.east_range = pair_or(p, "east", s.east_range, NumberSpec::any("m"));
         if (!(s.east_range[0] <= 0.0 && s.east_range[1] >= 0.0)) {
             p.fail("east", "does not contain the entry position 0", "[lower <= 0, upper >= 0]");

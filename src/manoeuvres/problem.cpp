@@ -163,6 +163,13 @@ ManoeuvreProblem::ManoeuvreProblem(flightdyn::FlightModel model, ManoeuvreSpec s
     p.path = {{"alpha", spec_.alpha[0], spec_.alpha[1], 0.1},
               {"beta", spec_.beta[0], spec_.beta[1], 0.1},
               {"load_factor", spec_.load_factor[0], spec_.load_factor[1], 1.0}};
+    if (spec_.mach_max > 0.0) p.path.push_back({"mach", 0.0, spec_.mach_max, 0.1});
+    if (spec_.speed_path) {
+        p.path.push_back({"speed", spec_.speed_range[0], spec_.speed_range[1], 100.0});
+    }
+    if (spec_.bank_range) {
+        p.path.push_back({"bank", (*spec_.bank_range)[0], (*spec_.bank_range)[1], 1.0});
+    }
     p.initial_time = optimal::fixed(0.0);
     p.final_time = {spec_.duration[0], spec_.duration[1]};
     p.time_scale = spec_.duration_guess;
@@ -637,6 +644,11 @@ ConstraintCheck check(const ManoeuvreProblem& problem, const Trajectory& t) {
     c.alpha_max_deg = *std::max_element(alpha.begin(), alpha.end()) / kDeg;
     c.load_factor_max = *std::max_element(nz.begin(), nz.end());
     c.load_factor_min = *std::min_element(nz.begin(), nz.end());
+    const auto mach = t.column("mach");
+    c.mach_max = *std::max_element(mach.begin(), mach.end());
+    const auto h = t.column("altitude");
+    c.altitude_min = *std::min_element(h.begin(), h.end());
+    c.altitude_max = *std::max_element(h.begin(), h.end());
     const auto& lim = problem.model().limits;
     const std::array<std::pair<std::string, std::array<double, 2>>, 4> ctl{
         {{"elevator", lim.elevator},

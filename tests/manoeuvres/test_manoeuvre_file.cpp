@@ -74,6 +74,23 @@ final:
     EXPECT_EQ(s.cost, "minimum_time");
 }
 
+TEST(ManoeuvreFile, MachAndBankLimits) {
+    // optional path constraints (issue 16): none by default, SI and radians when given
+    const ManoeuvreSpec d = parse_manoeuvre("name: t\nentry: {speed: 100, altitude: 1000}\n", "d");
+    EXPECT_EQ(d.mach_max, 0.0);
+    EXPECT_FALSE(d.bank_range.has_value());
+    const ManoeuvreSpec s = parse_manoeuvre(R"(
+name: t
+entry: {speed: 100, altitude: 1000}
+path: {mach_max: 0.44, bank_deg: [-10, 90]}
+)",
+                                            "inline");
+    EXPECT_DOUBLE_EQ(s.mach_max, 0.44);
+    ASSERT_TRUE(s.bank_range.has_value());
+    EXPECT_NEAR((*s.bank_range)[0], -10.0 * kDeg, 1e-15);
+    EXPECT_NEAR((*s.bank_range)[1], 90.0 * kDeg, 1e-15);
+}
+
 /// The message of the ConfigError/InputError thrown by parsing `text`.
 std::string error_of(const std::string& text) {
     try {
@@ -112,6 +129,13 @@ TEST(ManoeuvreFile, Errors) {
         "name: x\nentry: {speed: 100, altitude: 1000}\nintermediate: {bank_deg: 90, fraction: "
         "2}\n");
     EXPECT_NE(inter.find("fraction"), std::string::npos) << inter;
+    const std::string mach =
+        error_of("name: x\nentry: {speed: 100, altitude: 1000}\npath: {mach_max: 0}\n");
+    EXPECT_NE(mach.find("mach_max"), std::string::npos) << mach;
+    // phi = atan2(c32, c33) jumps at +-180 deg: a bank range reaching it is refused
+    const std::string bank =
+        error_of("name: x\nentry: {speed: 100, altitude: 1000}\npath: {bank_deg: [0, 180]}\n");
+    EXPECT_NE(bank.find("bank_deg"), std::string::npos) << bank;
 }
 
 }  // namespace

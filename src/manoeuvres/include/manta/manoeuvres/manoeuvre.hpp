@@ -90,6 +90,13 @@ struct ManoeuvreSpec {
     std::array<double, 2> throttle{0.0, 1.0};              ///< within the aircraft's range
     std::array<double, 2> altitude_range{100.0, 15000.0};  ///< [m]
     std::array<double, 2> speed_range{40.0, 300.0};        ///< [m/s]
+    /// `path.speed` was given: the true airspeed is a path constraint within speed_range at
+    /// every node (else speed_range only bounds the body velocity u).
+    bool speed_path = false;
+    /// Largest Mach number (a path constraint at every node; 0: none).
+    double mach_max = 0.0;
+    /// Bank angle phi range [rad] (a path constraint at every node; none when not given).
+    std::optional<std::array<double, 2>> bank_range;
     std::array<double, 2> east_range{-1e5, 1e5};  ///< east position y relative to the entry [m]
     double control_rate = 1.0471975511965976;     ///< |deflection rate| limit [rad/s] (60 deg/s)
     double throttle_rate = 0.5;                   ///< |throttle rate| limit [1/s]

@@ -83,7 +83,9 @@ public:
         for (int i = 0; i < 4; ++i) xdot[state::elevator + i] = u[i];
     }
 
-    /// alpha, beta, load factor nz (body -z force of aerodynamics and thrust over m g).
+    /// alpha, beta, load factor nz (body -z force of aerodynamics and thrust over m g), and the
+    /// Mach number, the true airspeed and the bank angle when the file limits them
+    /// (`path.mach_max`, `path.speed`, `path.bank_deg`).
     template <class T>
     void path(std::span<const T> x, std::span<const T> u, std::span<const T> p, const T& t,
               std::span<T> g) const {
@@ -114,6 +116,14 @@ public:
         g[0] = atan2(ww, uu);
         g[1] = asin(T(vv / V));
         g[2] = -L.force_body.z() / (model_.mass.mass * model_.environment.gravity);
+        int k = 3;
+        if (spec_.mach_max > 0.0) g[k++] = L.mach;
+        if (spec_.speed_path) g[k++] = V;
+        if (spec_.bank_range) {
+            namespace Q = flightdyn::quat;
+            const T &q0 = x[Q::q0], &q1 = x[Q::q1], &q2 = x[Q::q2], &q3 = x[Q::q3];
+            g[k++] = atan2(T(2.0 * (q2 * q3 + q0 * q1)), T(q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3));
+        }
     }
 
     /// Smoothing term rate_weight * sum (control rate / rate limit)^2.
@@ -265,6 +275,9 @@ void write_trajectory_csv(const Trajectory& t, const std::filesystem::path& file
 /// Largest violations of the manoeuvre's own requirements in a trajectory.
 struct ConstraintCheck {
     double alpha_max_deg = 0.0;             ///< largest alpha [deg]
+    double mach_max = 0.0;                  ///< largest Mach number
+    double altitude_min = 0.0;              ///< lowest altitude [m]
+    double altitude_max = 0.0;              ///< highest altitude [m]
     double load_factor_max = 0.0;           ///< largest nz
     double load_factor_min = 0.0;           ///< smallest nz
     double control_limit_excess = 0.0;      ///< largest excess over a control limit [rad or -]
