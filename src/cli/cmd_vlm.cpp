@@ -226,9 +226,9 @@ void run_vlm(const VlmArgs& a) {
         j["model"] = in.model.name;
         j["input"] = in.label;
         j["alpha"] = s.alpha;
-        j["alpha_deg"] = s.alpha * core::rad_to_deg;
+        j["alpha_deg"] = run_case ? s.alpha * core::rad_to_deg : a.alpha_deg;
         j["beta"] = s.beta;
-        j["beta_deg"] = s.beta * core::rad_to_deg;
+        j["beta_deg"] = run_case ? s.beta * core::rad_to_deg : a.beta_deg;
         j["reference_point"] = {reference.point.x(), reference.point.y(), reference.point.z()};
         j["reference_point_from"] = reference.from;
         if (mass)
