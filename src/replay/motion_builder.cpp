@@ -122,6 +122,10 @@ aero::Motion trajectory_interpolant(const Trajectory& tr) {
     m.add_mode("elevator", tr.controls[0]);
     m.add_mode("aileron", tr.controls[1]);
     m.add_mode("rudder", tr.controls[2]);
+    // The motion proper (attitude, position, control deflections) is checked against the
+    // motion's plausible ranges; the flight-state channels below (V in m/s, the air angles,
+    // Mach, body rates) ride along as further columns and are not control deflections.
+    m.validate(tr.source);
     m.add_mode("V", tr.V);
     m.add_mode("alpha", tr.alpha);
     m.add_mode("beta", tr.beta);
@@ -129,7 +133,6 @@ aero::Motion trajectory_interpolant(const Trajectory& tr) {
     m.add_mode("p", tr.rates[0]);
     m.add_mode("q", tr.rates[1]);
     m.add_mode("r", tr.rates[2]);
-    m.validate(tr.source);
     return m;
 }
 
