@@ -5,8 +5,9 @@
 /// sharing an edge), ordered so that each strip's b edge is the next strip's a edge. A chain of
 /// m strips n_chord panels deep is a structured grid of (n_chord + 2) x (m + 1) vortex points:
 /// rows 0 .. n_chord - 1 on the panels' bound segments (quarter points), row n_chord on the
-/// trailing edge, row n_chord + 1 on the shed
-/// line behind the trailing edge. Chains of equal depth share one grid, side by side; the wake of
+/// trailing edge, row n_chord + 1 on the shed line behind it (ring row n_chord is the last
+/// panel's ring continued: its sides bend at the trailing edge). Chains of equal depth share one
+/// grid, side by side; the wake of
 /// every shedding chain is one more grid whose rows are the shed rows, newest first. In a grid
 /// the ring (row k, column e) has corners (k, e), (k, e+1), (k+1, e+1), (k+1, e) and circulation
 /// G(k, e) (zero in the last column of each chain, which closes it); each grid segment carries the

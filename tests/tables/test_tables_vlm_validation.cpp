@@ -220,9 +220,12 @@ TEST(TablesVlmValidation, ControlIncrementsFromTwelveSamplesAgainstBruteForce) {
     // (docs/tables.md): elevator dCL 0.40 %, dCD 4.5 %, dCm 0.38 %; aileron dCl 1.7 %, dCn 2.4 %,
     // dCY 1.2 %; rudder dCY 0.40 %, dCl 1.5 %, dCn 0.13 % (the previous Co-Kriging of the full
     // coefficient: 6.0, 26.5, 5.2; 4.8, 9.2, 8.6; 6.8, 10.6, 7.7 %). The bounds leave a margin.
-    const std::vector<Check> checks = {{aero::Axis::elevator, {0, 1, 4}, {0.01, 0.06, 0.01}},
+    // With the source's trailing legs along the free stream (MANTA issue 16, docs/vlm.md) the
+    // increments depend more on alpha (the wing's wake moves relative to the T-tail): elevator
+    // dCL 0.79 %, dCD 3.6 %, dCm 1.02 %; aileron 1.04, 2.07, 0.95 %; rudder 0.61, 0.87, 1.63 %.
+    const std::vector<Check> checks = {{aero::Axis::elevator, {0, 1, 4}, {0.01, 0.06, 0.015}},
                                        {aero::Axis::aileron, {3, 5, 2}, {0.02, 0.035, 0.02}},
-                                       {aero::Axis::rudder, {2, 3, 5}, {0.01, 0.02, 0.01}}};
+                                       {aero::Axis::rudder, {2, 3, 5}, {0.01, 0.02, 0.025}}};
     for (std::size_t k = 0; k < 3; ++k) {
         const TableWithSigma& t = r.tables[k + 1];
         ASSERT_EQ(t.table.axes[2].axis, checks[k].control);

@@ -7,10 +7,12 @@
 ///
 /// Lattice: one vortex ring per panel of `build_lattice`, its leading segment on the panel's
 /// bound segment (quarter point), its trailing segment on the next panel's bound segment; the
-/// last ring of a strip closes on the shed line, a quarter of the distance flown in one step
-/// (UnsteadyOptions::shed_offset) behind the trailing edge, where the newest wake row starts
-/// (Katz & Plotkin ch. 13; with uniform chordwise spacing and the default time step this is their
-/// quarter panel).
+/// last ring of a strip runs to the trailing edge and on to the shed line, a quarter of the
+/// distance flown in one step (UnsteadyOptions::shed_offset) behind the trailing edge along the
+/// free stream of the motion's first instant (body x for the planar wake), where the newest wake
+/// row starts (Katz & Plotkin ch. 13; with uniform chordwise spacing and the default time step
+/// this is their quarter panel). In steady flight the geometry is then that of the steady
+/// solver's trailing legs with TrailingLegs::freestream (body_axis for the planar wake).
 /// The control points, normals and control surfaces are the lattice's, with the same
 /// small-disturbance boundary condition as the steady solver: the geometry stays planar, control
 /// deflections rotate the normals of the kinematic term, and the deflection rate adds the
@@ -22,9 +24,11 @@
 /// the previous step, the wake's induced velocity is added to the right-hand side, and one back
 /// substitution with the influence matrix factorised once gives the new circulations (the lattice
 /// is rigid and the computation body-fixed). The oldest wake rows beyond the truncation length are
-/// dropped. Loads: Kutta-Joukowski on every lattice segment (bound and chordwise) with the local
-/// velocity (kinematic, lattice- and wake-induced) plus the unsteady term rho dGamma/dt A n of
-/// each ring (the unsteady Bernoulli equation, Katz & Plotkin ch. 13).
+/// dropped. Loads: Kutta-Joukowski on every bound segment with the local velocity (kinematic,
+/// lattice- and wake-induced) and on every chordwise segment up to the trailing edge with the
+/// kinematic velocity (the steady solver's and AVL's legs; UnsteadyOptions::chordwise_induced),
+/// plus the unsteady term rho dGamma/dt A n of each ring (the unsteady Bernoulli equation, Katz &
+/// Plotkin ch. 13).
 ///
 /// Frames: the motion is given in the motion frame of aero::Motion (x forward, y right, z down,
 /// translating at the entry speed v0 through still air); the lattice is in geometry axes (x aft,
