@@ -7,8 +7,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,8 +24,8 @@
 #include "manta/core/config.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
-#include "manta/core/text.hpp"
 #include "manta/core/units.hpp"
+#include "manta/flightdyn/cases.hpp"
 #include "manta/flightdyn/simulate.hpp"
 #include "manta/flightdyn/trim.hpp"
 
@@ -276,181 +274,7 @@ int run_single(const SimulateArgs& a) {
 
 // ------------------------------------------------------------------------------- ensembles
 
-/// One row of a cases file (docs/formats.md#cases-csv).
-struct CaseRow {
-    std::string name;
-    int line = 0;                       ///< line in the cases file
-    double speed = 0.0;                 ///< true airspeed [m/s]
-    double altitude = 0.0;              ///< [m]
-    double climb_angle_deg = 0.0;       ///< flight-path angle [deg] (column climb_angle_deg)
-    std::string inputs;                 ///< as written ("" = trim controls held)
-    std::filesystem::path inputs_path;  ///< resolved against the cases file's folder
-    int inputs_column = 0;              ///< 1-based column of `inputs` (for messages)
-    std::string inputs_text;            ///< the inputs file's content
-};
-
-/// The columns of a cases file and what each holds.
-const std::vector<std::pair<std::string, std::string>>& case_columns() {
-    static const std::vector<std::pair<std::string, std::string>> c = {
-        {"name", "case name, the output file's name"},
-        {"speed", "true airspeed [m/s]"},
-        {"altitude", "altitude [m]"},
-        {"inputs", "control-input CSV, relative to the cases file"},
-        {"climb_angle_deg", "flight-path angle of the trim [deg]"}};
-    return c;
-}
-
-/// Why `name` cannot name a file DIR/<name>.csv, or "" if it can: letters, digits, '_', '-'
-/// and '.', not first.
-std::string unsafe_name_reason(std::string_view name) {
-    for (const char ch : name) {
-        const auto u = static_cast<unsigned char>(ch);
-        if (std::isalnum(u) || ch == '_' || ch == '-' || ch == '.') continue;
-        if (ch == '/' || ch == '\\') return fmt::format("has a path separator '{}'", ch);
-        if (std::isprint(u)) return fmt::format("has '{}'", ch);
-        return fmt::format("has the byte 0x{:02x}", static_cast<unsigned>(u));
-    }
-    if (name.front() == '.') return "starts with '.'";
-    return {};
-}
-
-/// A finite number from a field, or InputError "file:line:column: ...".
-double parse_number(std::string_view field, const std::string& where, const std::string& column,
-                    const std::string& expected) {
-    const std::string_view digits =
-        field.size() > 1 && field.front() == '+' && field[1] != '-' && field[1] != '+'
-            ? field.substr(1)
-            : field;
-    double v = 0.0;
-    const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), v);
-    if (field.empty() || r.ec != std::errc() || r.ptr != digits.data() + digits.size() ||
-        !std::isfinite(v))
-        throw InputError(
-            fmt::format("{}: column '{}' value '{}' is not a finite number; expected {}", where,
-                        column, field, expected));
-    return v;
-}
-
-/// Read and check a cases file; every inputs file is read too (so a missing one fails before any
-/// aircraft is loaded). InputError/IoError with file:line[:column].
-std::vector<CaseRow> read_cases(const std::string& file) {
-    const std::string text = core::read_file(file);
-    const std::filesystem::path base = std::filesystem::path(file).parent_path();
-    std::vector<std::string> valid;
-    for (const auto& c : case_columns()) valid.push_back(c.first);
-    std::vector<std::string> header;
-    std::vector<int> col(valid.size(), -1);  // column of each valid name in the file
-    int header_line = 0;
-    std::vector<CaseRow> rows;
-    int line_no = 0;
-    std::size_t pos = 0;
-    while (pos <= text.size()) {
-        const std::size_t nl = text.find('\n', pos);
-        const std::string_view raw = std::string_view(text).substr(
-            pos, nl == std::string::npos ? std::string_view::npos : nl - pos);
-        pos = nl == std::string::npos ? text.size() + 1 : nl + 1;
-        ++line_no;
-        const std::string_view line = core::trim_blanks(raw);
-        if (line.empty() || line.front() == '#') continue;
-        const auto fields = core::split_fields(line);
-        if (header.empty()) {
-            header_line = line_no;
-            for (std::size_t i = 0; i < fields.size(); ++i) {
-                const std::string name(fields[i]);
-                const std::string at = fmt::format("{}:{}:{}", file, line_no, i + 1);
-                if (name.empty())
-                    throw InputError(
-                        fmt::format("{}: column {} of the header is empty", at, i + 1));
-                const auto it = std::find(valid.begin(), valid.end(), name);
-                if (it == valid.end()) {
-                    const std::string guess = core::closest_match(name, valid);
-                    throw InputError(fmt::format(
-                        "{}: unknown column '{}'{}; valid columns: {}", at, name,
-                        guess.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", guess),
-                        fmt::join(valid, ", ")));
-                }
-                const auto k = static_cast<std::size_t>(it - valid.begin());
-                if (col[k] >= 0)
-                    throw InputError(
-                        fmt::format("{}: column '{}' appears twice in the header", at, name));
-                col[k] = static_cast<int>(i);
-                header.push_back(name);
-            }
-            for (std::size_t k = 0; k < 3; ++k)  // name, speed, altitude
-                if (col[k] < 0)
-                    throw InputError(fmt::format(
-                        "{}:{}: missing column '{}' ({}); the header needs name, speed, altitude "
-                        "(optional: inputs, climb_angle_deg); columns present: {}",
-                        file, line_no, valid[k], case_columns()[k].second,
-                        fmt::join(header, ", ")));
-            continue;
-        }
-        if (fields.size() != header.size())
-            throw InputError(fmt::format("{}:{}: row has {} fields; expected {} as in the header",
-                                         file, line_no, fields.size(), header.size()));
-        auto at = [&](std::size_t k) { return fmt::format("{}:{}:{}", file, line_no, col[k] + 1); };
-        auto field = [&](std::size_t k) { return fields[static_cast<std::size_t>(col[k])]; };
-        CaseRow c;
-        c.line = line_no;
-        c.name = std::string(field(0));
-        if (c.name.empty())
-            throw InputError(fmt::format(
-                "{}: empty case name; every case needs a name (it names its output file)", at(0)));
-        if (const std::string why = unsafe_name_reason(c.name); !why.empty())
-            throw InputError(fmt::format(
-                "{}: case name '{}' {}; names become file names (DIR/<name>.csv): use letters, "
-                "digits, '_', '-' and '.' (not first)",
-                at(0), c.name, why));
-        for (const CaseRow& other : rows) {
-            const bool same = std::equal(c.name.begin(), c.name.end(), other.name.begin(),
-                                         other.name.end(), [](char x, char y) {
-                                             return std::tolower(static_cast<unsigned char>(x)) ==
-                                                    std::tolower(static_cast<unsigned char>(y));
-                                         });
-            if (same)
-                throw InputError(fmt::format(
-                    "{}: case name '{}' repeats '{}' of line {}; names must be unique, ignoring "
-                    "upper/lower case (each names its output file)",
-                    at(0), c.name, other.name, other.line));
-        }
-        c.speed = parse_number(field(1), at(1), "speed", "the true airspeed [m/s]");
-        if (!(c.speed > 0.0))
-            throw InputError(
-                fmt::format("{}: speed {} m/s; expected a true airspeed > 0", at(1), c.speed));
-        c.altitude = parse_number(field(2), at(2), "altitude", "the altitude [m]");
-        if (col[4] >= 0) {
-            c.climb_angle_deg =
-                parse_number(field(4), at(4), "climb_angle_deg", "a flight-path angle [deg]");
-            if (!(std::abs(c.climb_angle_deg) < 90.0))
-                throw InputError(fmt::format(
-                    "{}: climb_angle_deg {}; expected a flight-path angle in (-90, 90) deg", at(4),
-                    c.climb_angle_deg));
-        }
-        if (col[3] >= 0 && !field(3).empty()) {
-            c.inputs = std::string(field(3));
-            c.inputs_column = col[3] + 1;
-            const std::filesystem::path p(c.inputs);
-            c.inputs_path = p.is_absolute() ? p : base / p;
-            try {
-                c.inputs_text = core::read_file(c.inputs_path);
-            } catch (const IoError& e) {
-                throw IoError(fmt::format("{}: case '{}': inputs file '{}' cannot be read: {}",
-                                          at(3), c.name, c.inputs, e.what()));
-            }
-        }
-        rows.push_back(std::move(c));
-    }
-    if (header.empty())
-        throw InputError(fmt::format(
-            "{}: no header line; expected 'name,speed,altitude' (optional columns inputs, "
-            "climb_angle_deg)",
-            file));
-    if (rows.empty())
-        throw InputError(
-            fmt::format("{}: no cases after the header (line {}); expected at least one row", file,
-                        header_line));
-    return rows;
-}
+using flightdyn::CaseRow;
 
 /// Run `fn`; a MANTA error it throws is thrown again, of the same kind (so the same exit code),
 /// with `where` in front.
@@ -500,7 +324,8 @@ int run_ensemble(const SimulateArgs& a) {
         throw InputError(
             "--cases needs --out-dir DIR (where DIR/<name>.csv per case and DIR/summary.json go)");
     flightdyn::SimulationOptions opt = make_options(a);
-    const std::vector<CaseRow> rows = read_cases(a.cases);  // errors before the aircraft is read
+    const std::vector<CaseRow> rows =
+        flightdyn::read_cases(a.cases);  // errors before the aircraft is read
 
     const auto def = aircraft::load_aircraft(a.ac.aircraft);
     const flightdyn::FlightModel model = def.flight_model(a.ac.mass_case);
