@@ -2,7 +2,7 @@
 # Fuzz every input reader (docs/fuzzing.md): configure and build fuzz/ with clang into
 # $BUILD_FUZZ (default build-fuzz), replay the saved regression inputs, then run each libFuzzer
 # target for SECONDS (default 60): the mesh readers (su2, gmsh, cgns), the YAML readers
-# (aircraft, aero_database, campaign, manoeuvre, cfd_config), the CSV readers (motion, inputs,
+# (aircraft, aero_database, campaign, manoeuvre, cfd_config), the CSV readers (motion, inputs, cases,
 # trajectory) and the AVL reader (avl). Fails on the first crash, sanitizer report, timeout or
 # out-of-memory; the input is then under $BUILD_FUZZ/artifacts/<reader>/.
 #   scripts/run-fuzz.sh [SECONDS]      e.g. scripts/run-fuzz.sh 300
@@ -31,7 +31,7 @@ if [ -z "$cxx" ]; then
 fi
 
 cmake -S "$root/fuzz" -B "$build" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-readers="${READERS:-su2 gmsh cgns aircraft aero_database campaign manoeuvre cfd_config motion inputs trajectory avl}"
+readers="${READERS:-su2 gmsh cgns aircraft aero_database campaign manoeuvre cfd_config motion inputs trajectory cases avl}"
 targets=()
 for reader in $readers; do targets+=("fuzz_$reader"); done
 cmake --build "$build" -j "$jobs" --target "${targets[@]}" make_cgns_seeds
