@@ -113,15 +113,21 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
         for (std::size_t n = 0; n < nl; ++n)
             std::fill_n(gp_.begin() + static_cast<std::ptrdiff_t>(n_gp * n + phi_offset), 5, 1.0);
         if (options_.limiter) minmax_.assign(10 * no, 0.0);
-        // Unit normals of the owned nodes on symmetry planes, for the mirrored gradients.
+        // Unit normals of the owned nodes on symmetry planes (and walls with strong tangency),
+        // for the mirrored gradients.
         for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
-            if (kinds_[mk] != BoundaryKind::symmetry) continue;
+            // Walls too with strong tangency, for the density and pressure gradients only
+            // (spatial.hpp).
+            if (kinds_[mk] != BoundaryKind::symmetry &&
+                !(kinds_[mk] == BoundaryKind::wall && options_.strong_walls()))
+                continue;
             const mesh::BoundaryVertices& bv = dual.boundary[mk];
             for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < d.n_owned; ++k) {
                 const Vec3 n = bv.normals.col(static_cast<Index>(k));
                 const double a = n.norm();
                 if (!(a > 0.0)) continue;
                 symmetry_nodes_.push_back(bv.nodes[k]);
+                symmetry_is_wall_.push_back(kinds_[mk] == BoundaryKind::wall ? 1 : 0);
                 for (int c = 0; c < 3; ++c) symmetry_normals_.push_back(n[c] / a);
             }
         }
@@ -322,6 +328,7 @@ void SpatialOperator::mirror_symmetry_gradients() {
             Eigen::Map<Vec3> gk(g + 3 * k);
             gk -= gk.dot(n) * n;
         }
+        if (symmetry_is_wall_[s] != 0) continue;  // a wall: the scalars only
         // Velocity (rows u, v, w): (G + S G S) / 2 = G - (P G + G P) + 2 P G P, P = n n^T.
         Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> G(g + 3);
         const Vec3 Gn = G * n;                            // G P = Gn n^T

@@ -32,12 +32,12 @@ inline void onera_m6_setup(const mesh::Mesh& m, euler::CaseSetup& setup) {
     setup.reference.moment_point = {0.25, 0.0, 0.0};
 }
 
-/// Solve the case on the mesh `file` (nodes renumbered first if `reorder`) with `scheme` and its
-/// default wall tangency, check the reference area against SU2's `su2_area` (m^2, 0.2 %) and
-/// print the coefficients after `label`.
-inline euler::SolveOutcome onera_m6_solve(const std::filesystem::path& file,
-                                          euler::FluxScheme scheme, bool reorder, double su2_area,
-                                          const char* label) {
+/// Solve the case on the mesh `file` (nodes renumbered first if `reorder`) with `scheme` and
+/// `wall` tangency (automatic: the scheme's default), check the reference area against SU2's
+/// `su2_area` (m^2, 0.2 %) and print the coefficients after `label`.
+inline euler::SolveOutcome onera_m6_solve(
+    const std::filesystem::path& file, euler::FluxScheme scheme, bool reorder, double su2_area,
+    const char* label, euler::WallTangency wall = euler::WallTangency::automatic) {
     const mesh::Mesh m = reorder ? mesh::reorder_reverse_cuthill_mckee(mesh::read_mesh(file)).mesh
                                  : mesh::read_mesh(file);
     const mesh::DualMetrics dual = mesh::compute_dual_metrics(m);
@@ -46,6 +46,7 @@ inline euler::SolveOutcome onera_m6_solve(const std::filesystem::path& file,
     euler::CaseSetup setup;
     onera_m6_setup(m, setup);
     setup.spatial.flux.scheme = scheme;
+    setup.spatial.wall = wall;
     euler::SteadySolver solver({&m, &dual, m.n_nodes(), &halo}, comm, setup);
     // SU2's REF_AREA = 0: the z-projection of the wing.
     EXPECT_NEAR(solver.reference_area(), su2_area, 0.002 * su2_area);

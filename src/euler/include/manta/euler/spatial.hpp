@@ -30,7 +30,15 @@
 /// n) are made those of the mirrored solution: with the reflection S = I - 2 n n^T, a scalar's
 /// gradient g becomes (g + S g) / 2 (its normal component removed) and the velocity gradient G
 /// becomes (G + S G S) / 2 (d u_t / dn and d u_n / dt removed), once per symmetry marker at the
-/// node.
+/// node. With strong wall tangency (below) the density and pressure gradients of wall nodes
+/// lose their component along the node's dual normal n in the same way (n . grad = 0, the
+/// reflection condition SU2 v8.1 applies at Euler-wall nodes, su2code/SU2 pull request 2194);
+/// the velocity gradient is kept (reflecting it on a curved wall cost the subsonic bump channel
+/// its second order: observed 1.42 instead of 2.3, tests/euler/test_bump_order_validation.cpp).
+/// The one-sided least-squares normal gradients of p and rho at a coarse mesh's leading edge
+/// otherwise extrapolate the stagnation pressure into the first edges: on the coarse ONERA M6
+/// mesh, Roe with strong tangency had 12 % entropy error at the leading-edge nodes (4 % with
+/// the condition) and CD -0.0098 against SU2's Roe 0.0012 (docs/validation.md).
 ///
 /// JST (`FluxScheme::jst`; Jameson, Schmidt & Turkel, AIAA 81-1259, 1981; the edge form of
 /// Mavriplis & Jameson, AIAA J. 28, 1990; the variant of SU2 v8): the order, gradients and
@@ -57,7 +65,9 @@
 ///
 /// Wall tangency (`SpatialOptions::wall`). Weak (the default of the upwind fluxes): a wall or
 /// symmetry node's boundary flux is the pressure flux (0, p n, 0) and u.n = 0 holds only as the
-/// discrete solution converges. Strong (the default of JST, as SU2 v8.1 does it; Blazek,
+/// discrete solution converges; on a coarse mesh the converged node velocity then points into
+/// the wall where the wall turns within one dual cell (ONERA M6 coarse, Roe: u.n up to
+/// 0.56 V_inf at the leading-edge nodes). Strong (the default of JST, as SU2 v8.1 does it; Blazek,
 /// Computational Fluid Dynamics: Principles and Applications, 3rd ed., 2015, sec. 8.6): at
 /// such a node the momentum residual keeps only its part tangent to the node's wall and
 /// symmetry normals (orthonormalised when a node lies on two markers), and the removed
@@ -248,6 +258,7 @@ private:
     std::vector<double> lsq_;     ///< 6 per owned node: inverse normal matrix, xx xy xz yy yz zz
     std::vector<mesh::Index> symmetry_nodes_;  ///< owned nodes on symmetry markers (one per marker)
     std::vector<double> symmetry_normals_;     ///< 3 per entry of symmetry_nodes_: unit normal
+    std::vector<char> symmetry_is_wall_;       ///< per entry of symmetry_nodes_: 1 on a wall
     /// JST, 8 per local node: undivided Laplacian of V (5), pressure sensor, summed spectral
     /// radius, number of Laplacian neighbours (ghosts: exchanged).
     std::vector<double> jst_;
