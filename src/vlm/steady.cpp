@@ -739,8 +739,22 @@ SteadySolver::LegBend SteadySolver::leg_bend(const Vector3d& d) const {
         dy = R(0, 1) * wx.head(ns) + R(1, 1) * wy.head(ns) + R(2, 1) * wz.head(ns) - vy.head(ns);
         dz = R(0, 2) * wx.head(ns) + R(1, 2) * wy.head(ns) + R(2, 2) * wz.head(ns) - vz.head(ns);
     };
+    // Mirror symmetry with legs in the plane of symmetry's normal directions (d_y = 0): the
+    // image strip t' of strip t (sign s_t: +1 for a mirror copy, -1 for a strip in the plane,
+    // its own image reversed) has Delta_t'(S p) = s_t S Delta_t(p), so the rows of the image
+    // panel m(i) follow from those of i (C(m(i), t') = s_t s_i C(i, t)): half the work, and
+    // exactly symmetric (symmetric states keep zero lateral loads).
+    const bool mirrored = mirror_ && d.y() == 0.0;
+    std::vector<Eigen::Index> strip_image(static_cast<std::size_t>(ns));
+    std::vector<double> strip_sign(static_cast<std::size_t>(ns), 1.0);
+    if (mirrored)
+        for (std::size_t t = 0; t < static_cast<std::size_t>(ns); ++t) {
+            const auto p0 = static_cast<std::size_t>(lattice_.strips[t].first_panel);
+            strip_image[t] = lattice_.strip[static_cast<std::size_t>(mirror_->image[p0])];
+            strip_sign[t] = mirror_->sign[p0];
+        }
     Eigen::ArrayXd dx, dy, dz;
-    for (int i = 0; i < n; ++i) {
+    auto point_rows = [&](int i) {
         const auto ii = static_cast<std::size_t>(i);
         const int comp = component_of(model_, lattice_, ii);
         if (!closure_row_[ii]) {
@@ -752,7 +766,24 @@ SteadySolver::LegBend SteadySolver::leg_bend(const Vector3d& d) const {
         lb.U.row(3 * i) = dx.matrix().transpose();
         lb.U.row(3 * i + 1) = dy.matrix().transpose();
         lb.U.row(3 * i + 2) = dz.matrix().transpose();
-    }
+        if (!mirrored) return;
+        const int mi = mirror_->image[ii];
+        if (mi == i) return;
+        const double si = mirror_->sign[ii];
+        for (Eigen::Index t = 0; t < ns; ++t) {
+            const auto tt = static_cast<std::size_t>(t);
+            const Eigen::Index tm = strip_image[tt];
+            const double st = strip_sign[tt];
+            lb.C(mi, tm) = st * si * lb.C(i, t);
+            lb.U(3 * mi, tm) = st * lb.U(3 * i, t);
+            lb.U(3 * mi + 1, tm) = -st * lb.U(3 * i + 1, t);
+            lb.U(3 * mi + 2, tm) = st * lb.U(3 * i + 2, t);
+        }
+    };
+    if (mirrored)
+        for (const int i : mirror_->rep) point_rows(i);
+    else
+        for (int i = 0; i < n; ++i) point_rows(i);
     return lb;
 }
 
