@@ -64,7 +64,8 @@ public:
             const Eigen::Vector3d x(r[1], r[2], r[3]);
             sm += mi;
             smx += mi * x;
-            smxx += mi * x * x.transpose();
+            const Eigen::Matrix3d xx = x * x.transpose();  // x_i x_j: symmetric to the bit
+            smxx += mi * xx;
             Eigen::Matrix3d j;
             j << r[4], -r[7], -r[8], -r[7], r[5], -r[9], -r[8], -r[9], r[6];
             own += j;
@@ -81,8 +82,10 @@ public:
         m.mass = sm;
         m.cg = smx / sm;
         // Parallel axes: J = sum J_i + sum m (|x|^2 I - x x^T), moved to the centre of gravity.
-        const Eigen::Matrix3d second = smxx - sm * m.cg * m.cg.transpose();
-        m.inertia = own + second.trace() * Eigen::Matrix3d::Identity() - second;
+        const Eigen::Matrix3d cgcg = m.cg * m.cg.transpose();
+        const Eigen::Matrix3d second = smxx - sm * cgcg;
+        const Eigen::Matrix3d j = own + second.trace() * Eigen::Matrix3d::Identity() - second;
+        m.inertia = 0.5 * (j + j.transpose());  // exactly symmetric
         return m;
     }
 

@@ -139,6 +139,18 @@ TEST(AvlMass, MultipliersAddersAndDefaults) {
     EXPECT_DOUBLE_EQ(p.inertia(0, 1), -2.0);
 }
 
+// Found by fuzz_avl: the products sum m x_i x_j - M x_cg,i x_cg,j must give the same bits above
+// and below the diagonal (an inertia tensor that is not exactly symmetric).
+TEST(AvlMass, InertiaTensorIsExactlySymmetric) {
+    const AvlMass m = parse_avl_mass(
+        "Lunit = 0.01 m\n* 2 2\n+ 0 0.5\n1 1 0 0 ! item\n13 -1 -1 0 3 4 5 0.1 0.2 0.3\n"
+        "0.7 0.31 -2.9 1.3\n",
+        "fuzz.mass");
+    EXPECT_TRUE(m.inertia.isApprox(m.inertia.transpose(), 0.0));
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(m.inertia(i, k), m.inertia(k, i));
+}
+
 TEST(AvlMass, MalformedLines) {
     expect_parts(mass_error("Xunit = 1 m\n1 0 0 0\n"),
                  {"test.mass:1: unknown parameter 'Xunit'", "Lunit, Munit, Tunit, g or rho"});
