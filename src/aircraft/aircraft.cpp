@@ -656,4 +656,10 @@ flightdyn::FlightModel AircraftDefinition::flight_model(std::string_view mass_ca
     return m;
 }
 
+std::vector<aero::ModeLimit> AircraftDefinition::mode_limits() const {
+    return {{"elevator", limits.elevator[0], limits.elevator[1]},
+            {"aileron", limits.aileron[0], limits.aileron[1]},
+            {"rudder", limits.rudder[0], limits.rudder[1]}};
+}
+
 }  // namespace manta::aircraft

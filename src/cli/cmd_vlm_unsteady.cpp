@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,12 +11,14 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
 #include "checks.hpp"
 #include "commands.hpp"
 #include "manta/aero/motion.hpp"
+#include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
 #include "manta/core/units.hpp"
@@ -52,13 +55,29 @@ std::string history_csv(const vlm::UnsteadyHistory& h) {
     return s;
 }
 
+/// A MANTA aircraft file states its control limits (`controls:`): the motion's modes elevator,
+/// aileron and rudder must stay within them (an AVL geometry file states none).
+void check_motion_limits(const aero::Motion& motion, const UnsteadyArgs& a) {
+    std::string ext = std::filesystem::path(a.aircraft).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".avl") return;
+    const std::vector<aero::ModeLimit> limits = aircraft::load_aircraft(a.aircraft).mode_limits();
+    try {
+        aero::check_mode_limits(motion, limits, a.motion);
+    } catch (const InputError& e) {
+        throw InputError(
+            fmt::format("{}; limits from the 'controls' section of {}", e.what(), a.aircraft));
+    }
+}
+
 void run_unsteady(const UnsteadyArgs& a) {
     using clock = std::chrono::steady_clock;
     vlm::LatticeDensity density;
     density.n_chord = a.n_chord;
     density.strip_width = a.strip_width;
-    const VlmInput in = load_vlm_input(a.aircraft, density);
     const aero::Motion motion = aero::read_motion(a.motion);
+    check_motion_limits(motion, a);  // before the lattice is built
+    const VlmInput in = load_vlm_input(a.aircraft, density);
     vlm::UnsteadyOptions o;
     if (a.dt) o.dt = *a.dt;
     o.speed = a.speed;

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "manta/aero/motion.hpp"
 #include "manta/flightdyn/model.hpp"
 #include "manta/geometry/aircraft_geometry.hpp"
 
@@ -52,6 +53,9 @@ struct AircraftDefinition {
     [[nodiscard]] flightdyn::FlightModel flight_model(std::string_view mass_case = {}) const;
     /// The named loading case ("" = default). InputError if unknown, listing the names.
     [[nodiscard]] const flightdyn::MassProperties& mass_case(std::string_view name = {}) const;
+    /// The control limits as limits of a motion file's modes `elevator`, `aileron`, `rudder`
+    /// [rad] (the global controls, signs of docs/conventions.md), for aero::check_mode_limits.
+    [[nodiscard]] std::vector<aero::ModeLimit> mode_limits() const;
 };
 
 /// Read and validate an aircraft file (YAML). ConfigError/IoError with file, line, key on any
