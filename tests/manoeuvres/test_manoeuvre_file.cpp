@@ -49,7 +49,12 @@ TEST(ManoeuvreFile, IntermediateConditionAndPhases) {
     EXPECT_EQ(s.intermediate.altitude.kind, Target::Kind::entry);
     EXPECT_FALSE(s.intermediate.speed.active());
     EXPECT_EQ(s.phase_names, (std::vector<std::string>{"climb", "dive"}));
-    EXPECT_EQ(s.segments, 2);
+    EXPECT_EQ(s.segments, 4);
+    // the paper's envelope as constraints (sec. IV.C: alpha below 6 deg, Mach at most 0.44)
+    EXPECT_NEAR(s.alpha[1], 6.0 * kDeg, 1e-15);
+    EXPECT_DOUBLE_EQ(s.mach_max, 0.44);
+    ASSERT_TRUE(s.bank_range.has_value());
+    EXPECT_TRUE(s.speed_path);
 }
 
 TEST(ManoeuvreFile, TargetsAndDefaults) {

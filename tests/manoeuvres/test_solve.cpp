@@ -43,10 +43,16 @@ TEST(ManoeuvreSolve, ExactDerivativesWithTheIntermediateCondition) {
     const ManoeuvreProblem problem(manoeuvre_model(aircraft, spec), spec);
     EXPECT_EQ(problem.info().n_interior_events(), 6);  // bank, heading (sin, cos), gamma, altitude
     EXPECT_EQ(problem.phase_names(), (std::vector<std::string>{"climb", "dive"}));
-    EXPECT_EQ(problem.phase_of_segment(0, 2), 0);
-    EXPECT_EQ(problem.phase_of_segment(1, 2), 1);
+    EXPECT_EQ(problem.phase_of_segment(1, 4), 0);
+    EXPECT_EQ(problem.phase_of_segment(2, 4), 1);
+    // alpha, beta, nz, then the file's Mach, true airspeed and bank limits: their derivatives
+    // are checked below with the rest
+    ASSERT_EQ(problem.info().path.size(), 6U);
+    EXPECT_EQ(problem.info().path[3].name, "mach");
+    EXPECT_EQ(problem.info().path[4].name, "speed");
+    EXPECT_EQ(problem.info().path[5].name, "bank");
     const auto model = make_model(problem);
-    optimal::Mesh mesh = optimal::Mesh::uniform(2, 5);
+    optimal::Mesh mesh = optimal::Mesh::uniform(4, 5);
     mesh.free_breaks = true;
     const optimal::DerivativeCheck d = optimal::check_derivatives(*model, mesh, problem.guess());
     EXPECT_LT(d.jacobian_error, 1e-5) << "row " << d.worst_row << " col " << d.worst_col;
