@@ -172,6 +172,21 @@ TEST(Ranger, EngineLimitsEnvelope) {
     EXPECT_DOUBLE_EQ(a.environment.gravity, 9.80665);
 }
 
+TEST(Ranger, ModeLimitsAreTheControlLimits) {
+    // The limits a motion file's modes are checked against (vlm-unsteady): Table 3 of the paper.
+    const auto l = ranger().mode_limits();
+    ASSERT_EQ(l.size(), 3U);
+    EXPECT_EQ(l[0].name, "elevator");
+    EXPECT_NEAR(l[0].lower, -25 * deg, 1e-15);
+    EXPECT_NEAR(l[0].upper, 15 * deg, 1e-15);
+    EXPECT_EQ(l[1].name, "aileron");
+    EXPECT_NEAR(l[1].lower, -25 * deg, 1e-15);
+    EXPECT_NEAR(l[1].upper, 15 * deg, 1e-15);
+    EXPECT_EQ(l[2].name, "rudder");
+    EXPECT_NEAR(l[2].lower, -17.5 * deg, 1e-15);
+    EXPECT_NEAR(l[2].upper, 17.5 * deg, 1e-15);
+}
+
 TEST(Ranger, ControlSurfacesFollowThePaperSigns) {
     const auto& g = ranger().geometry;
     const auto* ail = g.find_control_surface("aileron");
