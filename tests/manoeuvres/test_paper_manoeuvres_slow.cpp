@@ -1,12 +1,12 @@
 /// @file test_paper_manoeuvres_slow.cpp
 /// The paper's three manoeuvres (Ghoreyshi, Badcock, Da Ronch et al., "Simulation of aircraft
-/// manoeuvres based on computational fluid dynamics", AIAA 2010, sec. V, Figs. 9-12) solved as
-/// time-optimal control problems at 60 LGL points (3 x 20 hp segments, the Lazy Eight 2 x 30 with
-/// its intermediate condition): each converges, meets its final conditions
-/// and path constraints (alpha <= 12 deg, load factor, Table 3 control limits), and its final
-/// time is plausible against the paper's time axes (Figs. 10-12: 0-60 s for the Lazy Eight and
-/// the Barrel Roll, 0-40 s for the Immelmann) and against a physical lower bound.
-/// Label `slow`: one to three minutes of CPU per manoeuvre on a 2-core machine.
+/// manoeuvres based on computational fluid dynamics", AIAA 2010, sec. V, Figs. 9-15) solved as
+/// time-optimal control problems from the example files: each converges, meets its final and
+/// intermediate conditions and path constraints, and falls inside the envelope of the paper's
+/// figures (issue 16, docs/manoeuvres.md#the-paper-s-manoeuvres): duration, altitude band, the
+/// largest angle of attack and Mach number the paper reports, heading change or roll, and an
+/// a-posteriori re-simulation error below 0.05 (scaled; the Lazy Eight 0.35, see there).
+/// Label `slow`: up to about two minutes of CPU per manoeuvre on a 2-core machine.
 
 #include <gtest/gtest.h>
 
@@ -23,13 +23,13 @@ namespace manta::manoeuvres {
 namespace {
 
 const std::filesystem::path kDir = std::filesystem::path(MANTA_SOURCE_DIR) / "examples/ranger2000";
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 struct Flown {
     ManoeuvreSpec spec;
     optimal::Solution solution;
     ConstraintCheck check;
-    double max_altitude = 0.0;  ///< [m]
-    Trajectory trajectory;      ///< at the LGL nodes
+    Trajectory trajectory;  ///< at the LGL nodes
 };
 
 Flown fly_file(const std::string& file) {
@@ -40,71 +40,104 @@ Flown fly_file(const std::string& file) {
     optimal::SolverOptions o;
     o.tolerance = f.spec.tolerance;
     f.solution = fly(problem, o).solution;
-    const Trajectory t = trajectory(problem, f.solution);
-    f.check = check(problem, t);
-    for (double h : t.column("altitude")) f.max_altitude = std::max(f.max_altitude, h);
-    f.trajectory = t;
-    std::printf("%s: tf %.3f s, %d iterations, %.1f s CPU, violation %.2e, resim %.2e\n",
-                f.spec.name.c_str(), f.solution.final_time, f.solution.iterations,
-                f.solution.cpu_time, f.solution.max_violation,
-                f.solution.resimulation.max_scaled_error);
+    f.trajectory = trajectory(problem, f.solution);
+    f.check = check(problem, f.trajectory);
+    std::printf(
+        "%s: tf %.3f s, %d iterations, %.1f s CPU, violation %.2e, resim %.3f, altitude "
+        "%.0f-%.0f m, alpha max %.2f deg, Mach max %.3f, nz %.2f-%.2f\n",
+        f.spec.name.c_str(), f.solution.final_time, f.solution.iterations, f.solution.cpu_time,
+        f.solution.max_violation, f.solution.resimulation.max_scaled_error, f.check.altitude_min,
+        f.check.altitude_max, f.check.alpha_max_deg, f.check.mach_max, f.check.load_factor_min,
+        f.check.load_factor_max);
     return f;
 }
 
-void expect_path_ok(const Flown& f) {
-    EXPECT_LE(f.check.alpha_max_deg, 12.0 + 1e-3);
+/// The envelope of a manoeuvre read off the paper's figures (issue 16).
+struct Envelope {
+    double duration_min, duration_max;  ///< [s]
+    double altitude_min, altitude_max;  ///< [m]
+    double alpha_max_deg;
+    double mach_max;
+    double resimulation_max = 0.05;  ///< scaled re-simulation error
+};
+
+void expect_inside(const Flown& f, const Envelope& e) {
+    ASSERT_TRUE(f.solution.converged()) << f.solution.status_text;
+    // the file's own constraints
+    EXPECT_LE(f.check.alpha_max_deg, f.spec.alpha[1] / kDeg + 1e-3);
     EXPECT_LE(f.check.load_factor_max, f.spec.load_factor[1] + 1e-3);
     EXPECT_GE(f.check.load_factor_min, f.spec.load_factor[0] - 1e-3);
     EXPECT_LE(f.check.control_limit_excess, 1e-8);
     EXPECT_NEAR(f.check.final_bank_deg, 0.0, 1e-2);
     EXPECT_NEAR(f.check.final_speed, f.spec.entry_speed, 1e-2);
-}
-
-TEST(PaperManoeuvres, Immelmann) {
-    const Flown f = fly_file("immelmann.yaml");
-    ASSERT_TRUE(f.solution.converged()) << f.solution.status_text;
-    expect_path_ok(f);
-    EXPECT_NEAR(std::abs(f.check.final_heading_change_deg), 180.0, 1e-2);
     EXPECT_GE(f.check.final_altitude, f.spec.entry_altitude - 0.1);
-    EXPECT_GT(f.max_altitude, f.spec.entry_altitude + 400.0);  // a half loop, not a level turn
-    // A half loop at <= 6 g from 163.57 m/s takes at least pi V / (g (n - 1)) = 10.5 s; the
-    // paper's Fig. 12 time axis ends at 40 s.
-    EXPECT_GT(f.solution.final_time, 10.5);
-    EXPECT_LT(f.solution.final_time, 40.0);
+    // the paper's envelope
+    EXPECT_GE(f.solution.final_time, e.duration_min);
+    EXPECT_LE(f.solution.final_time, e.duration_max);
+    EXPECT_GE(f.check.altitude_min, e.altitude_min);
+    EXPECT_LE(f.check.altitude_max, e.altitude_max);
+    EXPECT_LE(f.check.alpha_max_deg, e.alpha_max_deg + 1e-3);
+    EXPECT_LE(f.check.mach_max, e.mach_max + 1e-4);
+    // the controls re-simulated open loop stay on the collocated path
+    ASSERT_TRUE(f.solution.resimulation.done) << f.solution.resimulation.message;
+    EXPECT_LT(f.solution.resimulation.max_scaled_error, e.resimulation_max);
 }
 
-TEST(PaperManoeuvres, LazyEight) {
-    const Flown f = fly_file("lazy_eight.yaml");
-    ASSERT_TRUE(f.solution.converged()) << f.solution.status_text;
-    expect_path_ok(f);
-    EXPECT_NEAR(std::abs(f.check.final_heading_change_deg), 180.0, 1e-2);
-    EXPECT_NEAR(f.check.final_altitude, f.spec.entry_altitude, 0.1);
-    // 180 deg of heading at <= 6 g from 143 m/s: at least pi V / (g sqrt(n^2 - 1)) = 7.8 s;
-    // the paper's Fig. 10 time axis ends at 60 s.
-    EXPECT_GT(f.solution.final_time, 7.8);
-    EXPECT_LT(f.solution.final_time, 60.0);
-    // the paper's top of the climb (intermediate condition): the last node of the climb phase is
-    // the junction, at 90 deg of bank, heading 90 deg, level, above the entry
+/// Index of the junction node (last node of the first phase).
+std::size_t junction(const Flown& f) {
     const auto phase = f.trajectory.column("phase");
     std::size_t j = 0;
     while (j + 1 < phase.size() && phase[j + 1] == 0.0) ++j;
-    ASSERT_LT(j + 1, phase.size()) << "no dive phase";
-    constexpr double deg = 3.14159265358979323846 / 180.0;
-    EXPECT_NEAR(f.trajectory.column("phi")[j] / deg, 90.0, 1e-2);
-    EXPECT_NEAR((f.trajectory.column("psi")[j] - f.trajectory.column("psi")[0]) / deg, 90.0, 1e-2);
-    EXPECT_NEAR(f.trajectory.column("gamma")[j] / deg, 0.0, 1e-2);
-    EXPECT_GE(f.trajectory.column("altitude")[j], f.spec.entry_altitude + 100.0 - 1e-3);
-    EXPECT_NEAR(f.trajectory.column("t")[j], f.solution.breaks[1], 1e-9);
+    return j;
+}
+
+TEST(PaperManoeuvres, Immelmann) {
+    // Fig. 12: 0-40 s time axis, altitude axis 2 800-4 400 m, alpha <= 12 deg (sec. V); the
+    // replay of Fig. 15 spans 20 s of it. Mach: Table 4's flight-test range ends at 0.75.
+    const Flown f = fly_file("immelmann.yaml");
+    expect_inside(f, {20.0, 25.0, 2800.0, 4400.0, 12.0, 0.75});
+    EXPECT_NEAR(std::abs(f.check.final_heading_change_deg), 180.0, 1e-2);
+    EXPECT_GT(f.check.altitude_max, f.spec.entry_altitude + 400.0);  // a half loop
+}
+
+TEST(PaperManoeuvres, LazyEight) {
+    // Figs. 10 and 13: 0-60 s time axis (the replay 50 s), altitude axis 2 800-4 400 m; "the
+    // angle of attack remains below six degrees with a maximum Mach number of 0.44" (sec. IV.C)
+    // The re-simulation error is 0.29 on 2 x 2 hp segments of 20 points (0.16 on 2 x 2 of 30,
+    // 108 s CPU), the sideslip velocity v off by 2.9 m/s where beta rides its 2 deg bound at
+    // 70 m/s: the transcription does not resolve it yet (docs/manoeuvres.md#limitations), so
+    // this case is held to 0.35, not 0.05.
+    const Flown f = fly_file("lazy_eight.yaml");
+    expect_inside(f, {45.0, 60.0, 2800.0, 4400.0, 6.0, 0.44, 0.35});
+    EXPECT_NEAR(std::abs(f.check.final_heading_change_deg), 180.0, 1e-2);
+    EXPECT_NEAR(f.check.final_altitude, f.spec.entry_altitude, 0.1);
+    // the top of the climb: 90 deg of bank at heading 90 deg, level, at the file's altitude gain
+    const std::size_t j = junction(f);
+    ASSERT_LT(j + 1, f.trajectory.rows.size()) << "no dive phase";
+    EXPECT_NEAR(f.trajectory.column("phi")[j] / kDeg, 90.0, 1e-2);
+    EXPECT_NEAR((f.trajectory.column("psi")[j] - f.trajectory.column("psi")[0]) / kDeg, 90.0, 1e-2);
+    EXPECT_NEAR(f.trajectory.column("gamma")[j] / kDeg, 0.0, 1e-2);
+    EXPECT_GE(f.trajectory.column("altitude")[j],
+              f.spec.entry_altitude + f.spec.intermediate.altitude.lower - 1e-3);
+    EXPECT_NEAR(f.trajectory.column("t")[j], f.solution.breaks[f.solution.breaks.size() / 2], 1e-9);
+    // a climbing then diving turn: the heading never turns back
+    const auto psi = f.trajectory.column("psi");
+    for (std::size_t i = 1; i < psi.size(); ++i) EXPECT_GE(psi[i] - psi[i - 1], -1e-3) << i;
 }
 
 TEST(PaperManoeuvres, BarrelRoll) {
+    // Figs. 11 and 14: 0-60 s time axis (the replay 50 s), altitude axis 6 000-7 000 m; "the
+    // angle of attack during manoeuvre time remains below eight degrees" (sec. IV.C); a full
+    // roll, inverted near the highest point (sec. V). Mach: Table 4's range.
     const Flown f = fly_file("barrel_roll.yaml");
-    ASSERT_TRUE(f.solution.converged()) << f.solution.status_text;
-    expect_path_ok(f);
-    EXPECT_GE(f.check.final_altitude, f.spec.entry_altitude - 0.1);
-    // the paper's Fig. 11 time axis ends at 60 s; a full roll needs a few seconds at least
-    EXPECT_GT(f.solution.final_time, 3.0);
-    EXPECT_LT(f.solution.final_time, 60.0);
+    expect_inside(f, {45.0, 60.0, 6000.0, 7000.0, 8.0, 0.75});
+    const double roll = f.trajectory.column("roll_angle").back() / kDeg;
+    EXPECT_LE(roll, -340.0 + 1e-2);
+    EXPECT_GE(roll, -380.0 - 1e-2);
+    const std::size_t j = junction(f);
+    EXPECT_NEAR(std::abs(f.trajectory.column("phi")[j] / kDeg), 180.0, 1e-2);  // inverted
+    EXPECT_GE(f.trajectory.column("altitude")[j],
+              f.spec.entry_altitude + f.spec.intermediate.altitude.lower - 1e-3);
 }
 
 }  // namespace
