@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Benchmark of issue 5 (docs/manoeuvres.md#benchmark): minimum time to climb at 40 and 80 LGL
-# points, and the Ranger 2000's Immelmann, Lazy Eight and Barrel Roll at 60 points, each run
+# points, and the Ranger 2000's Immelmann (60 points), Lazy Eight and Barrel Roll (80), each run
 # REPS times as a separate `manta optimise` process on one core (OMP/OpenBLAS threads 1).
 # Prints, per case, the medians of CPU time and wall time of the solve (from the JSON summary),
 # IPOPT iterations, peak resident memory of the process (GNU time), and the final time.
@@ -22,8 +22,8 @@ cases=(
     "climb-40|--problem min-time-to-climb --nodes 40"
     "climb-80|--problem min-time-to-climb --nodes 80"
     "immelmann-60|--aircraft $ranger/aircraft.yaml --manoeuvre $ranger/manoeuvres/immelmann.yaml"
-    "lazy_eight-60|--aircraft $ranger/aircraft.yaml --manoeuvre $ranger/manoeuvres/lazy_eight.yaml"
-    "barrel_roll-60|--aircraft $ranger/aircraft.yaml --manoeuvre $ranger/manoeuvres/barrel_roll.yaml"
+    "lazy_eight-80|--aircraft $ranger/aircraft.yaml --manoeuvre $ranger/manoeuvres/lazy_eight.yaml"
+    "barrel_roll-80|--aircraft $ranger/aircraft.yaml --manoeuvre $ranger/manoeuvres/barrel_roll.yaml"
 )
 echo "== manoeuvres benchmark ($(nproc --all) cores, $(uname -m), $reps repetitions, medians)"
 for c in "${cases[@]}"; do
