@@ -117,6 +117,10 @@ int run_replay_command(const ReplayArgs& a) {
     uo.wake_length = a.wake_length;
     uo.threads = a.threads;
     uo.span_loading = false;
+    // The wake whose steady limit is the source's steady lattice (vlm::default_trailing_legs):
+    // convected along the free stream with free-stream legs, planar with body-axis legs (AVL).
+    uo.wake = source.trailing_legs() == vlm::TrailingLegs::freestream ? vlm::WakeModel::prescribed
+                                                                      : vlm::WakeModel::planar;
     source.set_unsteady_options(uo);
 
     // A live status line on a terminal; a line every 10 s otherwise (logs).

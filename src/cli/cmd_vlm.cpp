@@ -69,8 +69,17 @@ struct VlmArgs {
     // AVL users' files (AVL geometry only) and the moment reference point.
     std::string mass_file, run_file;
     int run_case = 1;
-    std::vector<double> xref;  // X Y Z
+    std::vector<double> xref;            // X Y Z
+    std::string trailing_legs = "auto";  // auto | freestream | body-axis
 };
+
+/// The trailing legs of `--trailing-legs`: `auto` is vlm::default_trailing_legs (free stream for
+/// MANTA aircraft files, as the tables and the replay; body x for AVL files, as AVL).
+vlm::TrailingLegs trailing_legs_of(const std::string& choice, bool has_geometry) {
+    if (choice == "freestream") return vlm::TrailingLegs::freestream;
+    if (choice == "body-axis") return vlm::TrailingLegs::body_axis;
+    return vlm::default_trailing_legs(has_geometry);
+}
 
 /// The options of AVL's mass and run-case files and of the moment reference point; the run case
 /// sets the flight state, so it excludes the state options.
@@ -140,7 +149,10 @@ void run_vlm(const VlmArgs& a) {
     const double mach = a.mach.value_or(in.default_mach);
     const vlm::Lattice lattice = vlm::build_lattice(in.model);
     const auto t1 = clock::now();
-    const vlm::SteadySolver solver(in.model, lattice, mach);
+    vlm::SteadyOptions solver_options;
+    solver_options.trailing_legs = trailing_legs_of(a.trailing_legs, in.geometry.has_value());
+    const bool legs_freestream = solver_options.trailing_legs == vlm::TrailingLegs::freestream;
+    const vlm::SteadySolver solver(in.model, lattice, mach, solver_options);
     const auto t2 = clock::now();
 
     vlm::FlowState s;
@@ -231,6 +243,7 @@ void run_vlm(const VlmArgs& a) {
         j["beta_deg"] = run_case ? s.beta * core::rad_to_deg : a.beta_deg;
         j["reference_point"] = {reference.point.x(), reference.point.y(), reference.point.z()};
         j["reference_point_from"] = reference.from;
+        j["trailing_legs"] = legs_freestream ? "freestream" : "body-axis";
         if (mass)
             j["mass_file"] = {{"file", a.mass_file},
                               {"items", mass->items},
@@ -315,6 +328,7 @@ void run_vlm(const VlmArgs& a) {
                    run_iterations);
     fmt::print("moments about ({:g}, {:g}, {:g}) from {}\n", reference.point.x(),
                reference.point.y(), reference.point.z(), reference.from);
+    fmt::print("trailing legs {}\n", legs_freestream ? "along the free stream" : "along body x");
     fmt::print("alpha {:.4f} deg  beta {:.4f} deg  Mach {:.3f}  p^ {:.4f}  q^ {:.4f}  r^ {:.4f}\n",
                s.alpha * core::rad_to_deg, s.beta * core::rad_to_deg, mach, s.p_hat, s.q_hat,
                s.r_hat);
@@ -394,6 +408,12 @@ void add_vlm(CLI::App& app, Action& action) {
         ->check(output_path());
     cmd->add_option("--span-csv", a->span_csv, "Write the span loading as CSV")
         ->check(output_path());
+    cmd->add_option("--trailing-legs", a->trailing_legs,
+                    "Trailing legs behind the trailing edge: freestream, body-axis, or auto "
+                    "(freestream for MANTA files, as the tables and replay; body-axis for AVL "
+                    "files, as AVL)")
+        ->check(CLI::IsMember({"auto", "freestream", "body-axis"}))
+        ->capture_default_str();
     cmd->add_flag("--json", a->json, "Print one JSON object (SI units, radians)");
     add_reference_options(*cmd, *a);
     cmd->callback([a, &action] {

@@ -86,11 +86,14 @@ private:
 }  // namespace
 
 VlmSource::VlmSource(Model model, std::optional<geometry::AircraftGeometry> geometry,
-                     ViscousDragOptions viscous)
+                     ViscousDragOptions viscous, std::optional<TrailingLegs> legs)
     : model_(std::move(model)),
       lattice_(build_lattice(model_)),
       geometry_(std::move(geometry)),
-      viscous_options_(std::move(viscous)) {
+      viscous_options_(std::move(viscous)),
+      trailing_legs_(legs.value_or(default_trailing_legs(geometry_.has_value()))) {
+    // The unsteady lattice's default wake has the steady lattice's legs as its steady limit.
+    if (trailing_legs_ == TrailingLegs::body_axis) unsteady_options_.wake = WakeModel::planar;
     check_lattice(model_, lattice_);
     Hasher h;
     h.str(core::version());
@@ -113,6 +116,7 @@ VlmSource::VlmSource(Model model, std::optional<geometry::AircraftGeometry> geom
     }
     for (const auto& n : lattice_.control_names) h.str(n);
     h.num(geometry_ ? 1.0 : 0.0);
+    h.str(trailing_legs_ == TrailingLegs::freestream ? "legs:freestream" : "legs:body_axis");
     h.num(viscous_options_.laminar_fraction_surfaces);
     h.num(viscous_options_.laminar_fraction_fuselage);
     h.num(viscous_options_.interference_wing);
@@ -133,10 +137,9 @@ std::shared_ptr<const SteadySolver> VlmSource::solver(double mach) const {
         if (it != solvers_.end()) return it->second;
     }
     // Built outside the lock (seconds for large lattices); a concurrent duplicate is harmless.
-    // Trailing legs along the free stream: the steady limit of the unsteady lattice's convected
-    // wake (start_unsteady, replay), so that tables made here and a replay agree in steady flight.
+    // Trailing legs as chosen at construction (default_trailing_legs).
     SteadyOptions o;
-    o.trailing_legs = TrailingLegs::freestream;
+    o.trailing_legs = trailing_legs_;
     auto s = std::make_shared<const SteadySolver>(model_, lattice_, mach, o);
     const std::lock_guard lock(mutex_);
     if (solvers_.size() >= 16) solvers_.erase(solvers_.begin());

@@ -83,28 +83,53 @@ TEST(VlmSource, FingerprintFollowsTheModel) {
 // settles on the source's steady coefficients, whose trailing legs follow the free stream too
 // (MANTA issue 16: with the steady legs along body x, Cm differed by 4 % on this model).
 TEST(VlmSource, ReplayOfASteadyMotionGivesTheSteadyLoads) {
-    vlm::VlmSource src(wing_and_tail());
-    aero::Motion m;
-    for (int i = 0; i <= 20; ++i) {
-        m.t.push_back(0.01 * i);
-        for (auto& p : m.position) p.push_back(0.0);
-        m.angles[0].push_back(0.0);
-        m.angles[1].push_back(0.05);
-        m.angles[2].push_back(0.0);
+    for (const vlm::TrailingLegs legs :
+         {vlm::TrailingLegs::freestream, vlm::TrailingLegs::body_axis}) {
+        SCOPED_TRACE(legs == vlm::TrailingLegs::freestream ? "freestream legs" : "body-axis legs");
+        vlm::VlmSource src(wing_and_tail(), std::nullopt, {}, legs);
+        aero::Motion m;
+        for (int i = 0; i <= 20; ++i) {
+            m.t.push_back(0.01 * i);
+            for (auto& p : m.position) p.push_back(0.0);
+            m.angles[0].push_back(0.0);
+            m.angles[1].push_back(0.05);
+            m.angles[2].push_back(0.0);
+        }
+        m.add_mode("elevator", std::vector<double>(21, 0.0));
+        m.add_mode("aileron", std::vector<double>(21, 0.0));
+        m.add_mode("rudder", std::vector<double>(21, 0.0));
+        m.metadata.v0 = 50.0;
+        double last = -1.0;
+        const auto h = src.replay(m, [&](double f) { last = f; });
+        ASSERT_GE(h.t.size(), 2u);
+        EXPECT_NEAR(last, 1.0, 1e-12);
+        aero::AeroQuery<double> q;
+        q.alpha = 0.05;
+        const auto st = src.evaluate(q, {});
+        EXPECT_NEAR(h.wind.back().CL, st.wind.CL, 0.01 * st.wind.CL);
+        EXPECT_NEAR(h.body.back().Cm, st.body.Cm, 0.02 * std::abs(st.body.Cm) + 1e-4);
     }
-    m.add_mode("elevator", std::vector<double>(21, 0.0));
-    m.add_mode("aileron", std::vector<double>(21, 0.0));
-    m.add_mode("rudder", std::vector<double>(21, 0.0));
-    m.metadata.v0 = 50.0;
-    double last = -1.0;
-    const auto h = src.replay(m, [&](double f) { last = f; });
-    ASSERT_GE(h.t.size(), 2u);
-    EXPECT_NEAR(last, 1.0, 1e-12);
+}
+
+// Which legs a source takes unless told (vlm::default_trailing_legs): free stream with a MANTA
+// geometry, body x without one (AVL files, AVL's convention), with the matching unsteady wake;
+// the choice changes the results, so it is part of the fingerprint (a table store keyed by it
+// never mixes the two).
+TEST(VlmSource, TrailingLegsByDefaultAndInTheFingerprint) {
+    EXPECT_EQ(vlm::default_trailing_legs(true), vlm::TrailingLegs::freestream);
+    EXPECT_EQ(vlm::default_trailing_legs(false), vlm::TrailingLegs::body_axis);
+    const vlm::VlmSource plain(wing_and_tail());
+    EXPECT_EQ(plain.trailing_legs(), vlm::TrailingLegs::body_axis);
+    EXPECT_EQ(plain.unsteady_options().wake, vlm::WakeModel::planar);
+    const vlm::VlmSource bent(wing_and_tail(), std::nullopt, {}, vlm::TrailingLegs::freestream);
+    EXPECT_EQ(bent.trailing_legs(), vlm::TrailingLegs::freestream);
+    EXPECT_EQ(bent.unsteady_options().wake, vlm::WakeModel::prescribed);
+    EXPECT_NE(plain.fingerprint(), bent.fingerprint());
     aero::AeroQuery<double> q;
-    q.alpha = 0.05;
-    const auto st = src.evaluate(q, {});
-    EXPECT_NEAR(h.wind.back().CL, st.wind.CL, 0.01 * st.wind.CL);
-    EXPECT_NEAR(h.body.back().Cm, st.body.Cm, 0.02 * std::abs(st.body.Cm) + 1e-4);
+    q.alpha = 0.17;
+    q.mach = 0.3;
+    // At 10 deg the two legs give different moments on a wing with a tail behind it.
+    EXPECT_GT(std::abs(plain.evaluate(q, {}).body.Cm - bent.evaluate(q, {}).body.Cm), 1e-4);
 }
 
 }  // namespace

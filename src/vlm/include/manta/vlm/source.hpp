@@ -23,11 +23,22 @@
 
 namespace manta::vlm {
 
+/// The trailing legs a source uses unless told: along the free stream for a model built from a
+/// MANTA aircraft geometry (the steady limit of the unsteady lattice's convected wake, so tables
+/// and replays agree in steady flight); along body x for a model without one (an AVL file: AVL's
+/// own convention, and its flat-plate fuselages lie in the wing plane, where bent legs pass
+/// centimetres from the plate; docs/vlm.md, "Trailing legs").
+[[nodiscard]] inline TrailingLegs default_trailing_legs(bool has_geometry) {
+    return has_geometry ? TrailingLegs::freestream : TrailingLegs::body_axis;
+}
+
 class VlmSource : public aero::AeroSource {
 public:
     /// `geometry`, if given, feeds the viscous build-up (else only Model::profile_drag is added).
+    /// The steady solvers' trailing legs: `legs`, or by default default_trailing_legs(geometry).
     explicit VlmSource(Model model, std::optional<geometry::AircraftGeometry> geometry = {},
-                       ViscousDragOptions viscous = {});
+                       ViscousDragOptions viscous = {},
+                       std::optional<TrailingLegs> legs = std::nullopt);
 
     [[nodiscard]] std::string name() const override { return "vlm"; }
     [[nodiscard]] std::string fingerprint() const override;
@@ -46,11 +57,14 @@ public:
     /// same thing. save/restore: UnsteadySolver::save_state / restore_state in a file.
     [[nodiscard]] std::unique_ptr<aero::UnsteadyRun> start_unsteady(
         const aero::Motion& motion, const aero::UnsteadySettings& settings) const override;
-    /// Options of `replay` and `start_unsteady`.
+    /// Options of `replay` and `start_unsteady` (default: UnsteadyOptions with the wake whose
+    /// steady limit is this source's steady lattice: WakeModel::planar with body-axis legs).
     void set_unsteady_options(const UnsteadyOptions& o) { unsteady_options_ = o; }
     [[nodiscard]] const UnsteadyOptions& unsteady_options() const { return unsteady_options_; }
 
     [[nodiscard]] const Model& model() const { return model_; }
+    /// Where the steady solvers' trailing legs go (part of the fingerprint).
+    [[nodiscard]] TrailingLegs trailing_legs() const { return trailing_legs_; }
     [[nodiscard]] const Lattice& lattice() const { return lattice_; }
     /// The solver at Mach `mach` (built on first use, then cached).
     [[nodiscard]] std::shared_ptr<const SteadySolver> solver(double mach) const;
@@ -65,6 +79,7 @@ private:
     Lattice lattice_;
     std::optional<geometry::AircraftGeometry> geometry_;
     ViscousDragOptions viscous_options_;
+    TrailingLegs trailing_legs_ = TrailingLegs::freestream;
     UnsteadyOptions unsteady_options_;
     std::string fingerprint_;
     mutable std::mutex mutex_;
