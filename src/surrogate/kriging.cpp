@@ -23,7 +23,6 @@ namespace manta::surrogate {
 
 namespace {
 
-constexpr double kSqrt5 = 2.23606797749978969641;
 constexpr double kLog2Pi = 1.83787706640934548356;
 /// Points per block in batch prediction (keeps the n x block correlation matrix in cache-sized
 /// pieces and bounds the memory of a large batch).
