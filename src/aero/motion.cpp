@@ -508,6 +508,14 @@ Motion parse_motion(std::string_view text, std::string source) {
     for (const auto& [line, comment] : layout.comments) {
         const auto kv = split_metadata(comment);
         if (!kv) {
+            // A carriage return inside the line would be a line break once written back
+            // (issue 16, found by fuzz_motion): refused here rather than by the writer.
+            if (comment.find('\r') != std::string_view::npos) {
+                throw InputError(fmt::format(
+                    "{}:{}: comment '{}' holds a carriage return inside the line; expected one "
+                    "line ending in LF or CR LF",
+                    source, line, comment));
+            }
             m.metadata.comments.emplace_back(comment);
             continue;
         }

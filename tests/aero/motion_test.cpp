@@ -190,6 +190,11 @@ TEST(MotionFile, ErrorsAreOneLineWithFileLineAndColumn) {
          "# v0: 100\n# altitude: 1\n# v0: 120\n" + header + row0 + row1,
          {"m.csv:3:", "'v0'", "twice", "line 1"}},
         {"short row", header + row0 + "0.1,0,0\n", {"m.csv:3:", "3 fields"}},
+        // Found by fuzz_motion (issue 16): the comment was kept and the motion could not be
+        // written back (a line break once written).
+        {"carriage return inside a comment",
+         "# made\rby hand\n" + header + row0 + row1,
+         {"m.csv:1:", "carriage return"}},
     };
     for (const auto& c : cases) {
         try {
