@@ -63,9 +63,10 @@ CfdConfig read(const ConfigNode& root) {
         c.spatial.flux.scheme = flux == "hllc"  ? FluxScheme::hllc
                                 : flux == "jst" ? FluxScheme::jst
                                                 : FluxScheme::roe;
-        const std::string wall = m.choice_or("wall", "auto", {"auto", "weak", "strong"});
+        const std::string wall = m.choice_or("wall", "auto", {"auto", "weak", "strong", "mixed"});
         c.spatial.wall = wall == "weak"     ? WallTangency::weak
                          : wall == "strong" ? WallTangency::strong
+                         : wall == "mixed"  ? WallTangency::mixed
                                             : WallTangency::automatic;
         c.spatial.flux.jst_k2 =
             m.number_or("jst_k2", c.spatial.flux.jst_k2, NumberSpec::range(0, 2, "-"));
@@ -84,6 +85,8 @@ CfdConfig read(const ConfigNode& root) {
         c.spatial.limiter = lim == "venkatakrishnan";
         c.spatial.venkatakrishnan_k = m.number_or("venkatakrishnan_k", c.spatial.venkatakrishnan_k,
                                                   NumberSpec::positive("-"));
+        c.spatial.sharp_edge_deg =
+            m.number_or("sharp_edge_deg", c.spatial.sharp_edge_deg, NumberSpec::positive("deg"));
         m.finish();
     }
     if (auto n = top.optional_child("solver")) {

@@ -52,6 +52,9 @@ void SpatialOptions::validate() const {
         throw ConfigError(fmt::format(
             "numerics.venkatakrishnan_k = {}; expected a finite number > 0 (usual range 0.3 to 10)",
             venkatakrishnan_k));
+    if (!(sharp_edge_deg > 0.0 && sharp_edge_deg < 180.0))
+        throw ConfigError(fmt::format(
+            "numerics.sharp_edge_deg = {}; expected an angle in (0, 180) degrees", sharp_edge_deg));
     if (!(flux.entropy_fix >= 0.0 && flux.entropy_fix <= 1.0))
         throw ConfigError(fmt::format(
             "numerics.entropy_fix = {}; expected a fraction of the spectral radius in [0, 1]",
@@ -107,6 +110,7 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
     W_.assign(5 * nl, 0.0);
     const bool jst = options_.flux.scheme == FluxScheme::jst;
     if (jst) init_jst();
+    if (options_.resolved_wall() == WallTangency::mixed) init_sharp_edges();
     if (options_.strong_walls()) init_wall_tangency();
     if (options_.order == 2 && !jst) {
         gp_.assign(n_gp * nl, 0.0);
@@ -126,6 +130,7 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
                 const Vec3 n = bv.normals.col(static_cast<Index>(k));
                 const double a = n.norm();
                 if (!(a > 0.0)) continue;
+                if (kinds_[mk] == BoundaryKind::wall && is_sharp(bv.nodes[k])) continue;
                 symmetry_nodes_.push_back(bv.nodes[k]);
                 symmetry_is_wall_.push_back(kinds_[mk] == BoundaryKind::wall ? 1 : 0);
                 for (int c = 0; c < 3; ++c) symmetry_normals_.push_back(n[c] / a);
@@ -185,7 +190,8 @@ std::size_t SpatialOperator::memory_bytes() const noexcept {
             jst_work_.capacity()) *
                sizeof(double) +
            symmetry_nodes_.capacity() * sizeof(Index) + kinds_.capacity() * sizeof(BoundaryKind) +
-           jst_boundary_.capacity();
+           jst_boundary_.capacity() + sharp_.capacity() +
+           sharp_sides_.capacity() * sizeof(SharpNode);
 }
 
 BlockMatrix SpatialOperator::make_jacobian_matrix() const {
@@ -398,15 +404,91 @@ void SpatialOperator::add_boundary_fluxes(double* r) const {
     }
 }
 
+void SpatialOperator::init_sharp_edges() {
+    const mesh::Mesh& m = *domain_.mesh;
+    const Index no = domain_.n_owned;
+    const auto face_area = [&m](Index f) {
+        // Newell's area vector of the (possibly non-planar) face.
+        const auto nodes = m.face(f);
+        Vec3 a = Vec3::Zero();
+        for (std::size_t k = 0; k < nodes.size(); ++k)
+            a += m.node(nodes[k]).cross(m.node(nodes[(k + 1) % nodes.size()]));
+        return Vec3(0.5 * a);
+    };
+    // Node wall normals: sum of the adjacent wall faces' area vectors.
+    std::vector<Vec3> nn(static_cast<std::size_t>(no), Vec3::Zero());
+    for (Index f = 0; f < m.n_faces(); ++f) {
+        if (kinds_[static_cast<std::size_t>(m.face_marker(f))] != BoundaryKind::wall) continue;
+        const Vec3 a = face_area(f);
+        for (Index n : m.face(f))
+            if (n < no) nn[static_cast<std::size_t>(n)] += a;
+    }
+    // A node is sharp when a face's unit normal makes more than sharp_edge_deg with the node
+    // normal; `ref` keeps the unit normal of its most deviating face.
+    const double c = std::cos(options_.sharp_edge_deg * M_PI / 180.0);
+    sharp_.assign(static_cast<std::size_t>(no), 0);
+    std::vector<double> worst(static_cast<std::size_t>(no), 2.0);
+    std::vector<Vec3> ref(static_cast<std::size_t>(no), Vec3::Zero());
+    for (Index f = 0; f < m.n_faces(); ++f) {
+        if (kinds_[static_cast<std::size_t>(m.face_marker(f))] != BoundaryKind::wall) continue;
+        const Vec3 a = face_area(f);
+        const double an = a.norm();
+        if (!(an > 0.0)) continue;
+        for (Index n : m.face(f)) {
+            if (n >= no) continue;
+            const auto i = static_cast<std::size_t>(n);
+            const double Nn = nn[i].norm();
+            const double cf = Nn > 0.0 ? a.dot(nn[i]) / (an * Nn) : -1.0;
+            if (cf < worst[i]) {
+                worst[i] = cf;
+                ref[i] = a / an;
+            }
+        }
+    }
+    for (Index n = 0; n < no; ++n) {
+        const auto i = static_cast<std::size_t>(n);
+        if (worst[i] < c) sharp_[i] = 1;
+    }
+    // The two sides of each sharp node: its wall faces split by the sign of their normal's
+    // component along `ref`, each side's normal the sum of its faces' area vectors.
+    std::vector<std::array<Vec3, 2>> sides(static_cast<std::size_t>(no),
+                                           {Vec3::Zero(), Vec3::Zero()});
+    for (Index f = 0; f < m.n_faces(); ++f) {
+        if (kinds_[static_cast<std::size_t>(m.face_marker(f))] != BoundaryKind::wall) continue;
+        const Vec3 a = face_area(f);
+        for (Index n : m.face(f)) {
+            if (n >= no || sharp_[static_cast<std::size_t>(n)] == 0) continue;
+            auto& sd = sides[static_cast<std::size_t>(n)];
+            sd[a.dot(ref[static_cast<std::size_t>(n)]) > 0.0 ? 0 : 1] += a;
+        }
+    }
+    sharp_sides_.clear();
+    for (Index n = 0; n < no; ++n)
+        if (sharp_[static_cast<std::size_t>(n)] != 0)
+            sharp_sides_.push_back({n, sides[static_cast<std::size_t>(n)]});
+}
+
+std::int64_t SpatialOperator::sharp_edge_nodes() const noexcept {
+    return static_cast<std::int64_t>(std::count(sharp_.begin(), sharp_.end(), char{1}));
+}
+
 void SpatialOperator::init_wall_tangency() {
     const mesh::DualMetrics& dual = *domain_.dual;
     const Index no = domain_.n_owned;
-    // Each owned node's wall and symmetry normals, in marker order.
+    // Each owned node's wall and symmetry normals, in marker order; sharp-edge nodes of `mixed`
+    // tangency: the difference b of the edge's two sides' unit normals instead of the node's
+    // wall normal, then the symmetry normals.
     std::vector<std::vector<Vec3>> normals(static_cast<std::size_t>(no));
+    for (const SharpNode& sn : sharp_sides_) {
+        if (!(sn.sides[0].norm() > 0.0) || !(sn.sides[1].norm() > 0.0)) continue;
+        const Vec3 b = sn.sides[0].normalized() - sn.sides[1].normalized();
+        if (b.norm() > 0.0) normals[static_cast<std::size_t>(sn.node)].push_back(b);
+    }
     for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
         if (kinds_[mk] == BoundaryKind::farfield) continue;
         const mesh::BoundaryVertices& bv = dual.boundary[mk];
         for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
+            if (kinds_[mk] == BoundaryKind::wall && is_sharp(bv.nodes[k])) continue;
             const Vec3 n = bv.normals.col(static_cast<Index>(k));
             if (n.norm() > 0.0) normals[static_cast<std::size_t>(bv.nodes[k])].push_back(n);
         }

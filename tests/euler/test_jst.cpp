@@ -134,6 +134,20 @@ TEST(JstConfig, WallTangencyKey) {
         euler::parse_cfd_config("numerics: {flux: roe}\n", "c.yaml").spatial.strong_walls());
     EXPECT_FALSE(euler::parse_cfd_config("numerics: {flux: jst, wall: weak}\n", "c.yaml")
                      .spatial.strong_walls());
+    const euler::CfdConfig mx =
+        euler::parse_cfd_config("numerics: {wall: mixed, sharp_edge_deg: 30}\n", "c.yaml");
+    EXPECT_EQ(mx.spatial.resolved_wall(), euler::WallTangency::mixed);
+    EXPECT_TRUE(mx.spatial.strong_walls());
+    EXPECT_EQ(mx.spatial.sharp_edge_deg, 30.0);
+    euler::SpatialOptions bad;
+    bad.sharp_edge_deg = 200.0;
+    try {
+        bad.validate();
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("sharp_edge_deg = 200"), std::string::npos)
+            << e.what();
+    }
     try {
         (void)euler::parse_cfd_config("numerics:\n  wall: strng\n", "c.yaml");
         FAIL();

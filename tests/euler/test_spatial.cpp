@@ -34,6 +34,7 @@ using manta::euler::SpatialOperator;
 using manta::euler::SpatialOptions;
 using manta::euler::Vec3;
 using manta::euler::Vec5;
+using manta::euler::WallTangency;
 using manta::mesh::CellType;
 using manta::mesh::FaceType;
 using manta::mesh::Index;
@@ -271,6 +272,59 @@ TEST(SpatialOptions, ValidateNamesTheBadValue) {
     o = SpatialOptions{};
     o.flux.entropy_fix = std::nan("");
     EXPECT_THROW(o.validate(), manta::ConfigError);
+}
+
+// Mixed tangency's sharp-edge nodes on an undistorted box of hexahedra walled on all six faces:
+// at its 12 edges the faces' normals make 45 deg with the node normal, at its 8 corners
+// 54.7 deg, elsewhere 0. With sharp_edge_deg 30 the edge and corner nodes are sharp
+// (12 x 3 + 8 = 44 of the 4 x 4 x 4 box), with 50 only the corners, with 60 none; the other
+// tangency modes mark none. At an edge node the one wall condition is u . b = 0, b along the
+// difference of the two faces' unit normals: a velocity along b is removed from the momentum
+// residual's replaced row, one along the edge or along the faces' normal sum is not.
+TEST(SpatialWalls, MixedTangencyFindsTheSharpEdges) {
+    const Case c(whole_mesh(make_box(4, 4, 4, Cells::hexa, 0.0, 1)));
+    const auto sharp_count = [&c](WallTangency w, double deg) {
+        SpatialOptions o = options(2);
+        o.wall = w;
+        o.sharp_edge_deg = deg;
+        const SpatialOperator op(c.domain(), all(c.mesh, BoundaryKind::wall), w_inf(), gamma_air,
+                                 o);
+        return op.sharp_edge_nodes();
+    };
+    EXPECT_EQ(sharp_count(WallTangency::mixed, 30.0), 44);
+    EXPECT_EQ(sharp_count(WallTangency::mixed, 50.0), 8);
+    EXPECT_EQ(sharp_count(WallTangency::mixed, 60.0), 0);
+    EXPECT_EQ(sharp_count(WallTangency::strong, 30.0), 0);
+    EXPECT_EQ(sharp_count(WallTangency::automatic, 30.0), 0);
+
+    // An edge node: x = 0, y = 0, z = 0.5 (sides -x and -y; b along (1, -1, 0) up to sign).
+    Index edge = -1;
+    for (Index n = 0; n < c.mesh.n_nodes(); ++n) {
+        const Eigen::Vector3d x = c.mesh.node(n);
+        if (std::abs(x.x()) < 1e-12 && std::abs(x.y()) < 1e-12 && std::abs(x.z() - 0.5) < 1e-12)
+            edge = n;
+    }
+    ASSERT_GE(edge, 0);
+    SpatialOptions o = options(2);
+    o.wall = WallTangency::mixed;
+    o.sharp_edge_deg = 30.0;
+    const SpatialOperator op(c.domain(), all(c.mesh, BoundaryKind::wall), w_inf(), gamma_air, o);
+    EXPECT_TRUE(op.is_sharp(edge));
+    const std::vector<double> lambda(static_cast<std::size_t>(c.mesh.n_nodes()), 2.0);
+    const Eigen::Vector3d b = Eigen::Vector3d(1.0, -1.0, 0.0).normalized();
+    for (const Eigen::Vector3d& u : {Eigen::Vector3d(b), Eigen::Vector3d(0.0, 0.0, 1.0),
+                                     Eigen::Vector3d(-1.0, -1.0, 0.0).normalized()}) {
+        NodeStates U(5, c.mesh.n_nodes());
+        U.setZero();
+        U.row(0).setOnes();
+        U.block(1, 0, 3, c.mesh.n_nodes()).colwise() = 0.3 * u;
+        NodeStates R(5, c.mesh.n_nodes());
+        R.setZero();
+        op.apply_wall_tangency(U, lambda, R);
+        // R_m = lambda (b . m) b: 2 x 0.3 along b for u = b, zero for the others.
+        const double along = std::abs(u.dot(b)) > 0.5 ? 0.6 : 0.0;
+        EXPECT_NEAR(R.col(edge).segment<3>(1).norm(), along, 1e-12) << u.transpose();
+    }
 }
 
 TEST(SpatialOperator, RejectsWrongBoundaryKindCount) {

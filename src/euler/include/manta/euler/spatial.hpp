@@ -75,6 +75,8 @@
 /// iteration drives the normal velocity to zero (`apply_wall_tangency`). At a sharp trailing
 /// edge the node's normal is the small sum of both sides' normals, nearly streamwise, and the
 /// strong condition makes the node a stagnation point (Cp about 1 there, as in SU2 v8.1).
+/// Mixed: strong, except at sharp-edge wall nodes (`SpatialOptions::sharp_edge_deg`), where the
+/// one wall condition is tangency to the edge's bisector (`WallTangency::mixed`).
 ///
 /// Partition-local meshes (docs/parallel.md): nodes [0, n_owned) are owned, the rest ghosts.
 /// Edges between two ghosts are skipped; residuals, gradients and limiters are computed for
@@ -111,6 +113,10 @@ enum class WallTangency {
     automatic,  ///< strong with JST, weak with the upwind fluxes
     weak,       ///< through the pressure flux only
     strong,     ///< normal momentum residual replaced by the tangency condition
+    /// strong, except at sharp-edge wall nodes (`SpatialOptions::sharp_edge_deg`): there the one
+    /// condition is u.b = 0, b the difference of the edge's two sides' unit normals (the flow
+    /// leaves along the bisector of the edge) instead of tangency to the node's summed normal
+    mixed,
 };
 
 /// Options of the spatial discretisation.
@@ -132,10 +138,20 @@ struct SpatialOptions {
     /// Wall and symmetry tangency.
     WallTangency wall = WallTangency::automatic;
 
-    /// Whether walls and symmetry planes impose tangency strongly with these options.
+    /// `mixed` tangency: a wall node is a sharp-edge node when one of its wall faces' unit
+    /// normals makes more than this angle (degrees) with the node's wall normal (the sum of its
+    /// wall faces' area vectors). On the coarse ONERA M6 wing: at most 40 deg on the smooth
+    /// surface, 47-49 deg at 6 tip nodes, 84-137 deg at the 103 trailing-edge nodes.
+    double sharp_edge_deg = 45.0;
+
+    /// The tangency these options resolve to (never `automatic`).
+    [[nodiscard]] WallTangency resolved_wall() const noexcept {
+        if (wall != WallTangency::automatic) return wall;
+        return flux.scheme == FluxScheme::jst ? WallTangency::strong : WallTangency::weak;
+    }
+    /// Whether walls and symmetry planes impose tangency strongly (at some nodes at least).
     [[nodiscard]] bool strong_walls() const noexcept {
-        return wall == WallTangency::strong ||
-               (wall == WallTangency::automatic && flux.scheme == FluxScheme::jst);
+        return resolved_wall() != WallTangency::weak;
     }
 
     /// ConfigError (one line naming the option, the value and what was expected) if the order
@@ -214,6 +230,14 @@ public:
     /// Edges that fell back to first order in the last `residual` (non-positive reconstructed
     /// density or pressure).
     [[nodiscard]] std::int64_t positivity_fallbacks() const noexcept { return n_fallbacks_; }
+    /// `mixed` tangency: whether owned node `n` is a sharp-edge wall node; false with the other
+    /// modes.
+    [[nodiscard]] bool is_sharp(mesh::Index n) const noexcept {
+        return static_cast<std::size_t>(n) < sharp_.size() &&
+               sharp_[static_cast<std::size_t>(n)] != 0;
+    }
+    /// Number of owned sharp-edge wall nodes (`mixed` tangency; 0 otherwise).
+    [[nodiscard]] std::int64_t sharp_edge_nodes() const noexcept;
 
     [[nodiscard]] const SpatialOptions& options() const noexcept { return options_; }
     [[nodiscard]] const Domain& domain() const noexcept { return domain_; }
@@ -234,6 +258,7 @@ private:
     void compute_limiter();
     void add_boundary_fluxes(double* r) const;
     void init_wall_tangency();
+    void init_sharp_edges();
 
     Domain domain_;
     std::vector<BoundaryKind> kinds_;
@@ -252,7 +277,15 @@ private:
         std::array<Vec3, 3> e;  ///< orthonormal
     };
     std::vector<TangencyNode> tangency_;
-    std::vector<double> W_;       ///< 5 per local node: primitive states
+    /// `mixed` tangency: 1 for each owned sharp-edge wall node (weak there), else 0; empty
+    /// otherwise.
+    std::vector<char> sharp_;
+    struct SharpNode {
+        mesh::Index node;
+        std::array<Vec3, 2> sides;  ///< area-vector sums of the edge's two sides' faces
+    };
+    std::vector<SharpNode> sharp_sides_;  ///< the sharp nodes, ascending
+    std::vector<double> W_;               ///< 5 per local node: primitive states
     std::vector<double> gp_;      ///< 20 per local node: gradient (5x3, row-major) then phi (5)
     std::vector<double> minmax_;  ///< 10 per owned node: neighbourhood min (5), max (5) of W
     std::vector<double> lsq_;     ///< 6 per owned node: inverse normal matrix, xx xy xz yy yz zz
