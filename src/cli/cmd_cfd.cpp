@@ -164,7 +164,14 @@ int run_cfd(const CfdArgs& a) {
         scatter(r.U);
         solver.set_iteration_state(r.state);
         if (!r.U_backoff.empty()) solver.set_backoff_state(to_local(r.U_backoff));
-        if (r.state.limiter_frozen) solver.set_frozen_limiter(to_local(r.limiter));
+        if (r.state.limiter_frozen && !r.limiter.empty()) {
+            solver.set_frozen_limiter(to_local(r.limiter));
+        } else if (r.state.limiter_frozen && !solver.limiter_values().empty()) {
+            throw InputError(fmt::format(
+                "{}: corrupt restart file (the limiter is frozen but its values are missing); "
+                "run with --restart to start over",
+                restart_file.string()));
+        }
         resumed_from = r.state.iteration;
         if (root && std::filesystem::exists(out / "history.csv")) {
             std::ifstream in(out / "history.csv");
@@ -199,10 +206,13 @@ int run_cfd(const CfdArgs& a) {
         const std::vector<float>& good = solver.backoff_state();
         const std::vector<double> good_global =
             parallel::gather_owned(local, std::vector<double>(good.begin(), good.end()), 5, comm);
-        const bool frozen = solver.iteration_state().limiter_frozen;
-        const std::vector<double> phi =
-            frozen ? parallel::gather_owned(local, solver.limiter_values(), 5, comm)
-                   : std::vector<double>{};
+        // A scheme without a limiter (JST, first order) has no values to keep, on every rank.
+        const std::vector<double> phi_local = solver.iteration_state().limiter_frozen
+                                                  ? solver.limiter_values()
+                                                  : std::vector<double>{};
+        const std::vector<double> phi = phi_local.empty()
+                                            ? std::vector<double>{}
+                                            : parallel::gather_owned(local, phi_local, 5, comm);
         if (!root) return;
         euler::RestartData r;
         r.U_backoff.assign(good_global.begin(), good_global.end());

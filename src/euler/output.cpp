@@ -215,9 +215,8 @@ RestartData read_restart(const std::filesystem::path& file, std::int64_t n_nodes
             d.limiter.resize(5 * n);
             get(d.limiter.data(), d.limiter.size() * sizeof(double));
         }
-        if (st.limiter_frozen && d.limiter.empty())
-            throw InputError(
-                fmt::format("{}: corrupt restart file (frozen limiter without values)", name));
+        // A frozen limiter without values is a scheme without a limiter (JST, first order);
+        // the reader of a limited scheme checks that the values are there.
     }
     return d;
 }
