@@ -98,7 +98,9 @@ TEST(VlmWakeConsistency, BodyAxisLegsMatchPlanarWake) {
 // the state are the unsteady run's (the replay's unsteady lattice, 10-chord wake).
 TEST(VlmWakeConsistency, SourceTablesMatchTheUnsteadyLattice) {
     const vlm::Model m = ranger_model(8, 0.02);
-    const vlm::VlmSource src(m);
+    // The model is the Ranger's MANTA geometry, taken without the geometry object: the legs a
+    // source gets with its geometry (vlm::default_trailing_legs(true)) are asked for explicitly.
+    const vlm::VlmSource src(m, std::nullopt, {}, vlm::default_trailing_legs(true));
     aero::AeroQuery<double> q;
     q.alpha = 10.0 * deg;
     q.mach = mach;
