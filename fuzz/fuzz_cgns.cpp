@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_mesh_check.hpp"
 #include "manta/core/error.hpp"
 #include "manta/mesh/readers.hpp"
 
@@ -190,7 +191,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (!write_decoded(in, scratch_file().string())) return 0;
     }
     try {
-        (void)manta::mesh::read_cgns(scratch_file());
+        manta::fuzz::check_mesh(manta::mesh::read_cgns(scratch_file()));
     } catch (const manta::Error&) {
         // A one-line input error: the expected outcome for malformed input.
     }
