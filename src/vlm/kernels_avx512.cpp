@@ -11,8 +11,10 @@
     defined(__AVX512BW__) && defined(__FMA__)
 
 // GCC 12 reports the deliberately undefined first operands of its own AVX-512 intrinsics
-// (_mm512_undefined_ps and the like, inlined into Eigen's packet code) as maybe uninitialised.
+// (_mm512_undefined_ps and the like, inlined into Eigen's packet code) as maybe uninitialised,
+// and at -O1 (the sanitizer build) as uninitialised.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 
 // Eigen's AVX-512 square roots under EIGEN_FAST_MATH (its default) are a reciprocal-square-root
 // estimate with Newton steps, not correctly rounded, while the elements that a loop peels off for
