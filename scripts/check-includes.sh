@@ -13,6 +13,7 @@ declare -A allowed=(
   [parallel]="core mesh"
   [euler]="core mesh aero parallel"
   [motion]="core mesh aero euler"
+  [meshmotion]="core mesh aero geometry aircraft"
   [surrogate]="core"
   [optimal]="core"
   [tables]="core aero surrogate"
