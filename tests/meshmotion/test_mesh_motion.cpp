@@ -272,6 +272,7 @@ TEST(FlapWing, AFoldingDeflectionNamesTheNodeAndTheLargestValidDeflection) {
         FAIL() << "no error";
     } catch (const InputError& e) {
         const std::string msg = e.what();
+        std::printf("%s\n", msg.c_str());
         EXPECT_NE(msg.find("pitch.csv, step 7: t = 1 s"), std::string::npos) << msg;
         EXPECT_NE(msg.find("folds at node"), std::string::npos) << msg;
         EXPECT_NE(msg.find("elevator -85 deg"), std::string::npos) << msg;
