@@ -103,6 +103,34 @@ Index Mesh::add_node(const Eigen::Vector3d& x) {
     return n_nodes() - 1;
 }
 
+void Mesh::set_node(Index i, const Eigen::Vector3d& x) {
+    if (i < 0 || i >= n_nodes())
+        throw InputError(
+            fmt::format("{}: set_node: node {}; expected 0 to {}", source_, i, n_nodes() - 1));
+    if (!x.allFinite())
+        throw InputError(
+            fmt::format("{}: set_node: node {} to ({}, {}, {}); expected finite "
+                        "coordinates",
+                        source_, i, x.x(), x.y(), x.z()));
+    const auto k = 3 * static_cast<std::size_t>(i);
+    x_[k] = x.x();
+    x_[k + 1] = x.y();
+    x_[k + 2] = x.z();
+}
+
+void Mesh::set_coordinates(std::span<const double> x) {
+    if (x.size() != x_.size())
+        throw InputError(fmt::format("{}: set_coordinates: {} values; expected {} (3 per node)",
+                                     source_, x.size(), x_.size()));
+    for (std::size_t k = 0; k < x.size(); ++k)
+        if (!std::isfinite(x[k]))
+            throw InputError(fmt::format(
+                "{}: set_coordinates: node {} has a non-finite coordinate {}; expected finite "
+                "coordinates",
+                source_, k / 3, x[k]));
+    std::copy(x.begin(), x.end(), x_.begin());
+}
+
 Index Mesh::add_cell(CellType t, std::span<const Index> nodes, std::int64_t where) {
     if (static_cast<int>(nodes.size()) != node_count(t))
         throw InputError(fmt::format("{}: {} {}: a {} cell needs {} nodes, got {}", source_,

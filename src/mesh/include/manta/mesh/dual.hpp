@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,50 @@ struct DualMetrics {
 
 /// Compute the median-dual metrics of a finalized mesh (InputError otherwise).
 [[nodiscard]] DualMetrics compute_dual_metrics(const Mesh& mesh);
+
+/// Recompute the geometric part of `dual` (edge normals, dual volumes, boundary normals) from the
+/// mesh's current coordinates, in place: the edge list, the adjacency and the boundary node lists
+/// are kept and nothing is allocated. The arithmetic is that of `compute_dual_metrics`, so the
+/// result equals a fresh computation bit for bit. InputError if `dual` does not belong to the
+/// mesh (node, edge or marker counts differ).
+void update_dual_metrics(const Mesh& mesh, DualMetrics& dual);
+
+/// One value per dual face: per edge, in `DualMetrics::edges` order and with the orientation of
+/// its area vector (from node i to node j), and per boundary vertex of each marker, in
+/// `BoundaryVertices::nodes` order, outward. Swept volumes (m^3) and grid fluxes (m^3/s).
+struct DualFaceValues {
+    std::vector<double> edges;
+    std::vector<std::vector<double>> boundary;  ///< one per marker
+
+    /// Size the arrays for `dual` (values zero); no allocation when they already fit.
+    void resize_for(const DualMetrics& dual);
+    /// Whether the sizes are those of `dual`.
+    [[nodiscard]] bool fits(const DualMetrics& dual) const noexcept;
+};
+
+/// The volume each dual face sweeps when every node moves linearly in time from `x_a` to `x_b`
+/// (each 3 per node, x0 y0 z0 x1 ..., m), signed positive along the face's area vector, computed
+/// exactly (docs/mesh.md, "Swept volumes"). Every median-dual face is made of triangles whose
+/// corners (edge midpoints, face and cell node averages, nodes) move linearly; a triangle with
+/// corner displacements d_k and area vectors n_a, n_m, n_b at the start, the middle and the end
+/// sweeps S = (d_1 + d_2 + d_3) / 3 . (n_a + 4 n_m + n_b) / 6 (exact: the area vector is
+/// quadratic in time, the velocity linear over the triangle and constant in time), as in
+/// Mavriplis & Yang, "Construction of the discrete geometric conservation law for high-order
+/// time-accurate simulations on dynamic meshes", J. Comput. Phys. 213, 557-573, 2006. Hence for
+/// every node, with its metrics at a and b, V_i(b) - V_i(a) = sum over i's edges of +-S (+ where
+/// i is the edge's first node) plus its boundary parts, to round-off. `out` is sized by
+/// `resize_for` (no allocation after the first call). InputError if the sizes do not match the
+/// mesh or `dual` does not belong to it.
+void swept_volumes(const Mesh& mesh, const DualMetrics& dual, std::span<const double> x_a,
+                   std::span<const double> x_b, DualFaceValues& out);
+
+/// Largest defect of the discrete geometric conservation law over the nodes,
+/// max_i |V_i(b) - V_i(a) - (sum of i's swept volumes)|, divided by the largest dual volume at b
+/// (dimensionless; round-off size for exact swept volumes). `v_a`, `v_b`: dual volumes at the two
+/// levels. InputError if the sizes do not match `dual`.
+[[nodiscard]] double max_swept_volume_defect(const DualMetrics& dual, std::span<const double> v_a,
+                                             std::span<const double> v_b,
+                                             const DualFaceValues& swept);
 
 /// Largest closure defect over all dual cells, |sum_j ±n_ij + n_i(boundary)|, divided by the
 /// largest dual-face area magnitude at that node (dimensionless; round-off size for a correct

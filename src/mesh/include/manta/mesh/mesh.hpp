@@ -100,6 +100,15 @@ public:
     }
     /// All coordinates, x0 y0 z0 x1 ... (m).
     [[nodiscard]] std::span<const double> coordinates() const noexcept { return x_; }
+    /// Move node `i` to `x` (m); the topology and the finalized state are kept, so a moving or
+    /// deforming mesh keeps its cells, faces and markers (docs/mesh.md, "Moving geometry").
+    /// Nothing is checked here (a cell may invert): the caller checks volumes when it must.
+    /// InputError if `i` is not a node or `x` is not finite.
+    void set_node(Index i, const Eigen::Vector3d& x);
+    /// Replace all coordinates (x0 y0 z0 x1 ..., 3 per node, m; an Eigen::Matrix3Xd's data in
+    /// this order), topology kept; no allocation. InputError if the size is not 3 n_nodes or a
+    /// value is not finite (the mesh is then unchanged).
+    void set_coordinates(std::span<const double> x);
 
     [[nodiscard]] CellType cell_type(Index c) const { return cell_types_[c]; }
     /// Nodes of cell `c` in VTK order.
