@@ -42,6 +42,15 @@ inline void load3(const double* p, double& a, double& b, double& c) noexcept {
     c = p[2];
 }
 
+/// Newell's area vector of the (possibly non-planar) boundary face `f`.
+Vec3 face_area(const mesh::Mesh& m, Index f) {
+    const auto nodes = m.face(f);
+    Vec3 a = Vec3::Zero();
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+        a += m.node(nodes[k]).cross(m.node(nodes[(k + 1) % nodes.size()]));
+    return Vec3(0.5 * a);
+}
+
 }  // namespace
 
 void SpatialOptions::validate() const {
@@ -133,55 +142,108 @@ SpatialOperator::SpatialOperator(const Domain& d, std::vector<BoundaryKind> kind
                 if (kinds_[mk] == BoundaryKind::wall && is_sharp(bv.nodes[k])) continue;
                 symmetry_nodes_.push_back(bv.nodes[k]);
                 symmetry_is_wall_.push_back(kinds_[mk] == BoundaryKind::wall ? 1 : 0);
+                symmetry_sources_.push_back({static_cast<Index>(mk), static_cast<Index>(k)});
                 for (int c = 0; c < 3; ++c) symmetry_normals_.push_back(n[c] / a);
             }
         }
     }
     if (options_.order == 2 && !jst && options_.gradient == GradientMethod::least_squares) {
-        // Normal matrices M_i = sum_j w dx dx^T, w = 1 / |dx|^2, over the edges of owned nodes.
-        std::vector<double> M(6 * no, 0.0);
-        const double* x = m.coordinates().data();
-        const auto add = [&M](Index n, double dx, double dy, double dz, double w) {
-            double* a = M.data() + 6 * static_cast<std::size_t>(n);
-            a[0] += w * dx * dx;
-            a[1] += w * dx * dy;
-            a[2] += w * dx * dz;
-            a[3] += w * dy * dy;
-            a[4] += w * dy * dz;
-            a[5] += w * dz * dz;
-        };
-        for (Index e = 0; e < n_edges_active_; ++e) {
-            const auto [i, j] = dual.edges[e];
-            const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
-                         dz = x[3 * j + 2] - x[3 * i + 2];
-            const double w = 1.0 / (dx * dx + dy * dy + dz * dz);
-            add(i, dx, dy, dz, w);
-            if (j < d.n_owned) add(j, dx, dy, dz, w);
-        }
         lsq_.assign(6 * no, 0.0);
-        for (std::size_t n = 0; n < no; ++n) {
-            const double* a = M.data() + 6 * n;
-            Eigen::Matrix3d A;
-            A << a[0], a[1], a[2], a[1], a[3], a[4], a[2], a[4], a[5];
-            // The weighted directions are unit vectors: trace(A) = number of neighbours. A node
-            // whose neighbours span less than three dimensions (never in a valid 3-D mesh) gets
-            // the pseudo-inverse, i.e. the gradient in the directions it can see.
-            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
-            const Eigen::Vector3d l = es.eigenvalues();
-            const double tol = 1e-10 * std::max(l.maxCoeff(), 1e-300);
-            Eigen::Vector3d inv_l;
-            for (int k = 0; k < 3; ++k) inv_l[k] = l[k] > tol ? 1.0 / l[k] : 0.0;
-            const Eigen::Matrix3d Ai =
-                es.eigenvectors() * inv_l.asDiagonal() * es.eigenvectors().transpose();
-            double* s = lsq_.data() + 6 * n;
-            s[0] = Ai(0, 0);
-            s[1] = Ai(0, 1);
-            s[2] = Ai(0, 2);
-            s[3] = Ai(1, 1);
-            s[4] = Ai(1, 2);
-            s[5] = Ai(2, 2);
-        }
+        compute_least_squares();
     }
+}
+
+void SpatialOperator::compute_least_squares() {
+    // Normal matrices M_i = sum_j w dx dx^T, w = 1 / |dx|^2, over the edges of owned nodes,
+    // summed in lsq_ and inverted there.
+    const mesh::DualMetrics& dual = *domain_.dual;
+    const Index no = domain_.n_owned;
+    std::fill(lsq_.begin(), lsq_.end(), 0.0);
+    double* M = lsq_.data();
+    const double* x = domain_.mesh->coordinates().data();
+    const auto add = [M](Index n, double dx, double dy, double dz, double w) {
+        double* a = M + 6 * static_cast<std::size_t>(n);
+        a[0] += w * dx * dx;
+        a[1] += w * dx * dy;
+        a[2] += w * dx * dz;
+        a[3] += w * dy * dy;
+        a[4] += w * dy * dz;
+        a[5] += w * dz * dz;
+    };
+    for (Index e = 0; e < n_edges_active_; ++e) {
+        const auto [i, j] = dual.edges[e];
+        const double dx = x[3 * j] - x[3 * i], dy = x[3 * j + 1] - x[3 * i + 1],
+                     dz = x[3 * j + 2] - x[3 * i + 2];
+        const double w = 1.0 / (dx * dx + dy * dy + dz * dz);
+        add(i, dx, dy, dz, w);
+        if (j < no) add(j, dx, dy, dz, w);
+    }
+    for (std::size_t n = 0; n < static_cast<std::size_t>(no); ++n) {
+        double* a = M + 6 * n;
+        Eigen::Matrix3d A;
+        A << a[0], a[1], a[2], a[1], a[3], a[4], a[2], a[4], a[5];
+        // The weighted directions are unit vectors: trace(A) = number of neighbours. A node
+        // whose neighbours span less than three dimensions (never in a valid 3-D mesh) gets
+        // the pseudo-inverse, i.e. the gradient in the directions it can see.
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+        const Eigen::Vector3d l = es.eigenvalues();
+        const double tol = 1e-10 * std::max(l.maxCoeff(), 1e-300);
+        Eigen::Vector3d inv_l;
+        for (int k = 0; k < 3; ++k) inv_l[k] = l[k] > tol ? 1.0 / l[k] : 0.0;
+        const Eigen::Matrix3d Ai =
+            es.eigenvectors() * inv_l.asDiagonal() * es.eigenvectors().transpose();
+        a[0] = Ai(0, 0);
+        a[1] = Ai(0, 1);
+        a[2] = Ai(0, 2);
+        a[3] = Ai(1, 1);
+        a[4] = Ai(1, 2);
+        a[5] = Ai(2, 2);
+    }
+}
+
+void SpatialOperator::refresh_symmetry_normals() {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    for (std::size_t s = 0; s < symmetry_sources_.size(); ++s) {
+        const auto [mk, k] = symmetry_sources_[s];
+        const Vec3 n = dual.boundary[static_cast<std::size_t>(mk)].normals.col(k);
+        const double a = n.norm();
+        for (int c = 0; c < 3; ++c) symmetry_normals_[3 * s + c] = a > 0.0 ? n[c] / a : 0.0;
+    }
+}
+
+void SpatialOperator::update_geometry() {
+    const mesh::Mesh& m = *domain_.mesh;
+    const mesh::DualMetrics& dual = *domain_.dual;
+    if (static_cast<Index>(dual.dual_volumes.size()) != n_local_ ||
+        static_cast<int>(dual.boundary.size()) != m.n_markers() || m.n_nodes() != n_local_)
+        throw InputError(fmt::format(
+            "{}: update_geometry: the dual metrics ({} nodes, {} markers) no longer belong to the "
+            "mesh ({} nodes, {} markers); expected the operator's mesh and metrics, updated in "
+            "place",
+            m.source(), dual.dual_volumes.size(), dual.boundary.size(), m.n_nodes(),
+            m.n_markers()));
+    if (!lsq_.empty()) compute_least_squares();
+    refresh_symmetry_normals();
+    if (!sharp_sides_.empty()) refresh_sharp_sides();
+    if (options_.strong_walls()) refresh_wall_tangency();
+}
+
+void SpatialOperator::set_grid_fluxes(const mesh::DualFaceValues* g,
+                                      const Eigen::Matrix3Xd* node_velocities) {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    if (g != nullptr && !g->fits(dual))
+        throw InputError(fmt::format(
+            "{}: grid fluxes for {} edges and {} markers; expected one per edge ({}) and one per "
+            "boundary vertex of each of the {} markers (mesh::DualFaceValues::resize_for)",
+            domain_.mesh->source(), g->edges.size(), g->boundary.size(), dual.n_edges(),
+            dual.boundary.size()));
+    if (node_velocities != nullptr && node_velocities->cols() != n_local_)
+        throw InputError(
+            fmt::format("{}: {} node grid velocities; expected one per local node ({})",
+                        domain_.mesh->source(), node_velocities->cols(), n_local_));
+    grid_ = g;
+    grid_velocity_ = g != nullptr ? node_velocities : nullptr;
+    if (options_.strong_walls()) refresh_wall_tangency();
 }
 
 std::size_t SpatialOperator::memory_bytes() const noexcept {
@@ -191,7 +253,11 @@ std::size_t SpatialOperator::memory_bytes() const noexcept {
                sizeof(double) +
            symmetry_nodes_.capacity() * sizeof(Index) + kinds_.capacity() * sizeof(BoundaryKind) +
            jst_boundary_.capacity() + sharp_.capacity() +
-           sharp_sides_.capacity() * sizeof(SharpNode);
+           sharp_sides_.capacity() * sizeof(SharpNode) +
+           sharp_faces_.capacity() * sizeof(sharp_faces_[0]) +
+           symmetry_sources_.capacity() * sizeof(symmetry_sources_[0]) +
+           tangency_.capacity() * sizeof(TangencyNode) +
+           tangency_sources_.capacity() * sizeof(tangency_sources_[0]);
 }
 
 BlockMatrix SpatialOperator::make_jacobian_matrix() const {
@@ -392,13 +458,15 @@ void SpatialOperator::add_boundary_fluxes(double* r) const {
         const mesh::BoundaryVertices& bv = dual.boundary[mk];
         const BoundaryKind kind = kinds_[mk];
         const double* bn = bv.normals.data();
+        const double* gb = grid_ != nullptr ? grid_->boundary[mk].data() : nullptr;
         // Nodes ascending: the owned ones come first.
         for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
             const Index n = bv.nodes[k];
             const Vec5 Wn = Eigen::Map<const Vec5>(W + 5 * static_cast<std::size_t>(n));
             const Vec3 nv(bn[3 * k], bn[3 * k + 1], bn[3 * k + 2]);
-            const Vec5 F = kind == BoundaryKind::farfield ? farfield_flux(Wn, W_inf_, nv, gamma_)
-                                                          : wall_flux(Wn, nv, gamma_);
+            const double g = gb != nullptr ? gb[k] : 0.0;
+            const Vec5 F = kind == BoundaryKind::farfield ? farfield_flux(Wn, W_inf_, nv, g, gamma_)
+                                                          : wall_flux(Wn, nv, g, gamma_);
             Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(n)) += F;
         }
     }
@@ -407,14 +475,7 @@ void SpatialOperator::add_boundary_fluxes(double* r) const {
 void SpatialOperator::init_sharp_edges() {
     const mesh::Mesh& m = *domain_.mesh;
     const Index no = domain_.n_owned;
-    const auto face_area = [&m](Index f) {
-        // Newell's area vector of the (possibly non-planar) face.
-        const auto nodes = m.face(f);
-        Vec3 a = Vec3::Zero();
-        for (std::size_t k = 0; k < nodes.size(); ++k)
-            a += m.node(nodes[k]).cross(m.node(nodes[(k + 1) % nodes.size()]));
-        return Vec3(0.5 * a);
-    };
+    const auto face_area = [&m](Index f) { return euler::face_area(m, f); };
     // Node wall normals: sum of the adjacent wall faces' area vectors.
     std::vector<Vec3> nn(static_cast<std::size_t>(no), Vec3::Zero());
     for (Index f = 0; f < m.n_faces(); ++f) {
@@ -450,22 +511,34 @@ void SpatialOperator::init_sharp_edges() {
         if (worst[i] < c) sharp_[i] = 1;
     }
     // The two sides of each sharp node: its wall faces split by the sign of their normal's
-    // component along `ref`, each side's normal the sum of its faces' area vectors.
-    std::vector<std::array<Vec3, 2>> sides(static_cast<std::size_t>(no),
-                                           {Vec3::Zero(), Vec3::Zero()});
+    // component along `ref` (kept as the faces' sides for `update_geometry`), each side's normal
+    // the sum of its faces' area vectors.
+    sharp_sides_.clear();
+    std::vector<Index> index(static_cast<std::size_t>(no), -1);
+    for (Index n = 0; n < no; ++n)
+        if (sharp_[static_cast<std::size_t>(n)] != 0) {
+            index[static_cast<std::size_t>(n)] = static_cast<Index>(sharp_sides_.size());
+            sharp_sides_.push_back({n, {Vec3::Zero(), Vec3::Zero()}});
+        }
+    sharp_faces_.clear();
     for (Index f = 0; f < m.n_faces(); ++f) {
         if (kinds_[static_cast<std::size_t>(m.face_marker(f))] != BoundaryKind::wall) continue;
         const Vec3 a = face_area(f);
         for (Index n : m.face(f)) {
             if (n >= no || sharp_[static_cast<std::size_t>(n)] == 0) continue;
-            auto& sd = sides[static_cast<std::size_t>(n)];
-            sd[a.dot(ref[static_cast<std::size_t>(n)]) > 0.0 ? 0 : 1] += a;
+            sharp_faces_.push_back({index[static_cast<std::size_t>(n)], f,
+                                    a.dot(ref[static_cast<std::size_t>(n)]) > 0.0 ? 0 : 1});
         }
     }
-    sharp_sides_.clear();
-    for (Index n = 0; n < no; ++n)
-        if (sharp_[static_cast<std::size_t>(n)] != 0)
-            sharp_sides_.push_back({n, sides[static_cast<std::size_t>(n)]});
+    refresh_sharp_sides();
+}
+
+void SpatialOperator::refresh_sharp_sides() {
+    const mesh::Mesh& m = *domain_.mesh;
+    for (SharpNode& sn : sharp_sides_) sn.sides = {Vec3::Zero(), Vec3::Zero()};
+    for (const auto& [s, f, side] : sharp_faces_)
+        sharp_sides_[static_cast<std::size_t>(s)].sides[static_cast<std::size_t>(side)] +=
+            face_area(m, f);
 }
 
 std::int64_t SpatialOperator::sharp_edge_nodes() const noexcept {
@@ -475,39 +548,98 @@ std::int64_t SpatialOperator::sharp_edge_nodes() const noexcept {
 void SpatialOperator::init_wall_tangency() {
     const mesh::DualMetrics& dual = *domain_.dual;
     const Index no = domain_.n_owned;
-    // Each owned node's wall and symmetry normals, in marker order; sharp-edge nodes of `mixed`
-    // tangency: the difference b of the edge's two sides' unit normals instead of the node's
-    // wall normal, then the symmetry normals.
-    std::vector<std::vector<Vec3>> normals(static_cast<std::size_t>(no));
-    for (const SharpNode& sn : sharp_sides_) {
-        if (!(sn.sides[0].norm() > 0.0) || !(sn.sides[1].norm() > 0.0)) continue;
-        const Vec3 b = sn.sides[0].normalized() - sn.sides[1].normalized();
-        if (b.norm() > 0.0) normals[static_cast<std::size_t>(sn.node)].push_back(b);
-    }
+    // Each owned node's wall and symmetry normals, in marker order (as (marker, k) references);
+    // sharp-edge nodes of `mixed` tangency: first the difference b of the edge's two sides' unit
+    // normals instead of the node's wall normal, then the symmetry normals.
+    std::vector<int> sharp_index(static_cast<std::size_t>(no), -1);
+    for (std::size_t s = 0; s < sharp_sides_.size(); ++s)
+        sharp_index[static_cast<std::size_t>(sharp_sides_[s].node)] = static_cast<int>(s);
+    std::vector<std::vector<std::array<Index, 2>>> sources(static_cast<std::size_t>(no));
     for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
         if (kinds_[mk] == BoundaryKind::farfield) continue;
         const mesh::BoundaryVertices& bv = dual.boundary[mk];
         for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
             if (kinds_[mk] == BoundaryKind::wall && is_sharp(bv.nodes[k])) continue;
             const Vec3 n = bv.normals.col(static_cast<Index>(k));
-            if (n.norm() > 0.0) normals[static_cast<std::size_t>(bv.nodes[k])].push_back(n);
+            if (n.norm() > 0.0)
+                sources[static_cast<std::size_t>(bv.nodes[k])].push_back(
+                    {static_cast<Index>(mk), static_cast<Index>(k)});
         }
     }
     tangency_.clear();
+    tangency_sources_.clear();
     for (Index i = 0; i < no; ++i) {
-        const auto& ns = normals[static_cast<std::size_t>(i)];
-        if (ns.empty()) continue;
-        TangencyNode t{i, 0, {}};
-        // Gram-Schmidt; a normal within about 3 degrees of the span of the earlier ones adds
-        // no condition (two markers meeting at a shallow angle).
-        for (const Vec3& n : ns) {
-            Vec3 v = n.normalized();
-            for (int k = 0; k < t.count; ++k)
-                v -= t.e[static_cast<std::size_t>(k)].dot(v) * t.e[static_cast<std::size_t>(k)];
-            if (v.norm() > 0.05 && t.count < 3)
-                t.e[static_cast<std::size_t>(t.count++)] = v.normalized();
+        const auto& src = sources[static_cast<std::size_t>(i)];
+        int sharp = sharp_index[static_cast<std::size_t>(i)];
+        if (sharp >= 0) {
+            const SharpNode& sn = sharp_sides_[static_cast<std::size_t>(sharp)];
+            if (!(sn.sides[0].norm() > 0.0) || !(sn.sides[1].norm() > 0.0) ||
+                !((sn.sides[0].normalized() - sn.sides[1].normalized()).norm() > 0.0))
+                sharp = -1;
         }
+        if (src.empty() && sharp < 0) continue;
+        TangencyNode t{i,
+                       0,
+                       {},
+                       {},
+                       sharp,
+                       static_cast<std::int32_t>(tangency_sources_.size()),
+                       static_cast<std::int32_t>(src.size())};
+        tangency_sources_.insert(tangency_sources_.end(), src.begin(), src.end());
         tangency_.push_back(t);
+    }
+    refresh_wall_tangency();
+}
+
+void SpatialOperator::refresh_wall_tangency() {
+    const mesh::DualMetrics& dual = *domain_.dual;
+    // Gram-Schmidt over the node's directions (the sharp-edge bisector first); a normal within
+    // about 3 degrees of the span of the earlier ones adds no condition (two markers meeting at a
+    // shallow angle). Each direction carries its target, the grid velocity along it: from the
+    // node velocity when given, else the marker face's normal speed g / |n| (orthonormalised with
+    // the direction), and 0 for the sharp-edge bisector.
+    for (TangencyNode& t : tangency_) {
+        t.count = 0;
+        t.b = {0.0, 0.0, 0.0};
+        const auto add = [&t](const Vec3& n, double speed) {
+            const double a = n.norm();
+            if (!(a > 0.0)) return;
+            Vec3 v = n.normalized();
+            double s = speed;
+            for (int k = 0; k < t.count; ++k) {
+                const auto ks = static_cast<std::size_t>(k);
+                const double c = t.e[ks].dot(v);
+                v -= c * t.e[ks];
+                s -= c * t.b[ks];
+            }
+            const double vn = v.norm();
+            if (vn > 0.05 && t.count < 3) {
+                t.b[static_cast<std::size_t>(t.count)] = s / vn;
+                t.e[static_cast<std::size_t>(t.count++)] = v.normalized();
+            }
+        };
+        if (t.sharp >= 0) {
+            const SharpNode& sn = sharp_sides_[static_cast<std::size_t>(t.sharp)];
+            add(sn.sides[0].normalized() - sn.sides[1].normalized(), 0.0);
+        }
+        for (std::int32_t q = t.first; q < t.first + t.n; ++q) {
+            const auto [mk, k] = tangency_sources_[static_cast<std::size_t>(q)];
+            const Vec3 n = dual.boundary[static_cast<std::size_t>(mk)].normals.col(k);
+            double speed = 0.0;
+            if (grid_ != nullptr && grid_velocity_ == nullptr) {
+                const double a = n.norm();
+                if (a > 0.0)
+                    speed =
+                        grid_->boundary[static_cast<std::size_t>(mk)][static_cast<std::size_t>(k)] /
+                        a;
+            }
+            add(n, speed);
+        }
+        if (grid_velocity_ != nullptr) {
+            const Vec3 v = grid_velocity_->col(t.node);
+            for (int k = 0; k < t.count; ++k)
+                t.b[static_cast<std::size_t>(k)] = v.dot(t.e[static_cast<std::size_t>(k)]);
+        }
     }
 }
 
@@ -516,12 +648,14 @@ void SpatialOperator::apply_wall_tangency(const NodeStates& U, const std::vector
     for (const TangencyNode& t : tangency_) {
         const double lam = lambda[static_cast<std::size_t>(t.node)];
         const Vec3 m = U.col(t.node).segment<3>(1);
+        const double rho = U(0, t.node);
         Vec3 r = R.col(t.node).segment<3>(1);
         Vec3 c = Vec3::Zero();
         for (int k = 0; k < t.count; ++k) {
             const Vec3& e = t.e[static_cast<std::size_t>(k)];
             r -= e.dot(r) * e;
-            c += lam * e.dot(m) * e;
+            // rho (u - v_grid) . e = 0 (the target b is 0 on a fixed mesh: bit for bit).
+            c += lam * (e.dot(m) - rho * t.b[static_cast<std::size_t>(k)]) * e;
         }
         R.col(t.node).segment<3>(1) = r + c;
     }
@@ -537,7 +671,13 @@ void SpatialOperator::apply_wall_tangency(const std::vector<double>& lambda, dou
         T.block<3, 3>(1, 1) -= N;
         J.transform_row(t.node, T);
         Mat5 A = Mat5::Zero();
-        A.block<3, 3>(1, 1) = (1.0 + 1.0 / cfl) * lambda[static_cast<std::size_t>(t.node)] * N;
+        const double lam = lambda[static_cast<std::size_t>(t.node)];
+        A.block<3, 3>(1, 1) = (1.0 + 1.0 / cfl) * lam * N;
+        // d(-lambda rho b_k e_k)/d rho of a moving wall.
+        if (grid_ != nullptr)
+            for (int k = 0; k < t.count; ++k)
+                A.block<3, 1>(1, 0) -=
+                    (lam * t.b[static_cast<std::size_t>(k)]) * t.e[static_cast<std::size_t>(k)];
         J.add(J.diagonal(t.node), A);
     }
 }
@@ -563,6 +703,7 @@ void SpatialOperator::residual(const NodeStates& U, NodeStates& R) {
     const double* W = W_.data();
     const double* gp = gp_.data();
     const double* sn = dual.edge_normals.data();
+    const double* ge = grid_ != nullptr ? grid_->edges.data() : nullptr;
     const auto* edges = dual.edges.data();
     double* r = R.data();
     std::int64_t fallbacks = 0;
@@ -570,6 +711,7 @@ void SpatialOperator::residual(const NodeStates& U, NodeStates& R) {
     for (Index e = 0; e < n_edges_active_; ++e) {
         const Index i = edges[e][0], j = edges[e][1];
         const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        const double g = ge != nullptr ? ge[e] : 0.0;
         Vec5 WL = Eigen::Map<const Vec5>(W + 5 * static_cast<std::size_t>(i));
         Vec5 WR = Eigen::Map<const Vec5>(W + 5 * static_cast<std::size_t>(j));
         Vec5 F;
@@ -586,13 +728,13 @@ void SpatialOperator::residual(const NodeStates& U, NodeStates& R) {
                                     (gj[3 * k] * dx + gj[3 * k + 1] * dy + gj[3 * k + 2] * dz);
             }
             if (L[0] > 0.0 && L[4] > 0.0 && Rr[0] > 0.0 && Rr[4] > 0.0) {
-                F = numerical_flux(L, Rr, nv, gamma_, options_.flux);
+                F = numerical_flux(L, Rr, nv, g, gamma_, options_.flux);
             } else {
                 ++fallbacks;
-                F = numerical_flux(WL, WR, nv, gamma_, options_.flux);
+                F = numerical_flux(WL, WR, nv, g, gamma_, options_.flux);
             }
         } else {
-            F = numerical_flux(WL, WR, nv, gamma_, options_.flux);
+            F = numerical_flux(WL, WR, nv, g, gamma_, options_.flux);
         }
         Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(i)) += F;
         Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(j)) -= F;
@@ -609,19 +751,24 @@ void SpatialOperator::spectral_radii(const NodeStates& U, std::vector<double>& l
     const Index no = domain_.n_owned;
     lambda.assign(static_cast<std::size_t>(no), 0.0);
     const double* sn = dual.edge_normals.data();
+    const double* ge = grid_ != nullptr ? grid_->edges.data() : nullptr;
     for (Index e = 0; e < n_edges_active_; ++e) {
         const Index i = dual.edges[e][0], j = dual.edges[e][1];
         const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
-        const double s = 0.5 * (spectral_radius(primitive(U.col(i), gamma_), nv, gamma_) +
-                                spectral_radius(primitive(U.col(j), gamma_), nv, gamma_));
+        const double g = ge != nullptr ? ge[e] : 0.0;
+        const double s = 0.5 * (spectral_radius(primitive(U.col(i), gamma_), nv, g, gamma_) +
+                                spectral_radius(primitive(U.col(j), gamma_), nv, g, gamma_));
         lambda[i] += s;
         if (j < no) lambda[j] += s;
     }
-    for (const mesh::BoundaryVertices& bv : dual.boundary) {
+    for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
+        const mesh::BoundaryVertices& bv = dual.boundary[mk];
+        const double* gb = grid_ != nullptr ? grid_->boundary[mk].data() : nullptr;
         for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
             const Index n = bv.nodes[k];
-            lambda[n] += spectral_radius(primitive(U.col(n), gamma_),
-                                         bv.normals.col(static_cast<Index>(k)), gamma_);
+            lambda[n] +=
+                spectral_radius(primitive(U.col(n), gamma_), bv.normals.col(static_cast<Index>(k)),
+                                gb != nullptr ? gb[k] : 0.0, gamma_);
         }
     }
 }
@@ -639,11 +786,13 @@ void SpatialOperator::jacobian(const NodeStates& U, BlockMatrix& J) const {
         return;
     }
     const double* sn = dual.edge_normals.data();
+    const double* ge = grid_ != nullptr ? grid_->edges.data() : nullptr;
     Mat5 A, B;
     for (Index e = 0; e < n_edges_active_; ++e) {
         const Index i = dual.edges[e][0], j = dual.edges[e][1];
         const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
-        flux_jacobians(primitive(U.col(i), gamma_), primitive(U.col(j), gamma_), nv, gamma_,
+        const double g = ge != nullptr ? ge[e] : 0.0;
+        flux_jacobians(primitive(U.col(i), gamma_), primitive(U.col(j), gamma_), nv, g, gamma_,
                        options_.flux, A, B);
         // R_i += F(U_i, U_j), R_j -= F(U_i, U_j).
         J.add(J.diagonal(i), A);
@@ -660,15 +809,17 @@ void SpatialOperator::add_boundary_jacobians(const NodeStates& U, BlockMatrix& J
     Mat5 A;
     for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
         const mesh::BoundaryVertices& bv = dual.boundary[mk];
+        const double* gb = grid_ != nullptr ? grid_->boundary[mk].data() : nullptr;
         for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
             const Index n = bv.nodes[k];
             const Vec5 Wn = primitive(U.col(n), gamma_);
             const Vec3 nv = bv.normals.col(static_cast<Index>(k));
+            const double g = gb != nullptr ? gb[k] : 0.0;
             if (kinds_[mk] == BoundaryKind::farfield) {
-                (void)farfield_flux(Wn, W_inf_, nv, gamma_, &A);
+                (void)farfield_flux(Wn, W_inf_, nv, g, gamma_, &A);
                 J.add(J.diagonal(n), A);
             } else {
-                J.add(J.diagonal(n), wall_flux_jacobian(Wn, nv, gamma_));
+                J.add(J.diagonal(n), wall_flux_jacobian(Wn, nv, g, gamma_));
             }
         }
     }
@@ -692,9 +843,9 @@ inline Vec5 jst_variables(const double* W, double gg) noexcept {
     return V;
 }
 
-/// Spectral radius |u.n| + c |n| of a primitive state given as a pointer.
-inline double radius(const double* W, const Vec3& n, double gamma) noexcept {
-    return std::abs(W[1] * n.x() + W[2] * n.y() + W[3] * n.z()) +
+/// Spectral radius |u.n - g| + c |n| of a primitive state given as a pointer.
+inline double radius(const double* W, const Vec3& n, double g, double gamma) noexcept {
+    return std::abs(W[1] * n.x() + W[2] * n.y() + W[3] * n.z() - g) +
            std::sqrt(gamma * W[4] / W[0]) * n.norm();
 }
 
@@ -767,6 +918,7 @@ void SpatialOperator::compute_jst_node_terms() {
     const double gg = gamma_ / (gamma_ - 1.0);
     const double* W = W_.data();
     const double* sn = dual.edge_normals.data();
+    const double* ge = grid_ != nullptr ? grid_->edges.data() : nullptr;
     double* t = jst_.data();
     double* den = jst_work_.data();
     std::fill_n(t, n_jst * static_cast<std::size_t>(no), 0.0);
@@ -776,7 +928,8 @@ void SpatialOperator::compute_jst_node_terms() {
         const double* Wi = W + 5 * static_cast<std::size_t>(i);
         const double* Wj = W + 5 * static_cast<std::size_t>(j);
         const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
-        const double s = 0.5 * (radius(Wi, nv, gamma_) + radius(Wj, nv, gamma_));
+        const double g = ge != nullptr ? ge[e] : 0.0;
+        const double s = 0.5 * (radius(Wi, nv, g, gamma_) + radius(Wj, nv, g, gamma_));
         const bool bi = jst_boundary_[static_cast<std::size_t>(i)] != 0;
         const bool bj = jst_boundary_[static_cast<std::size_t>(j)] != 0;
         const Vec5 dV = jst_variables(Wj, gg) - jst_variables(Wi, gg);
@@ -801,13 +954,15 @@ void SpatialOperator::compute_jst_node_terms() {
             }
         }
     }
-    for (const mesh::BoundaryVertices& bv : dual.boundary) {
+    for (std::size_t mk = 0; mk < dual.boundary.size(); ++mk) {
+        const mesh::BoundaryVertices& bv = dual.boundary[mk];
         const double* bn = bv.normals.data();
+        const double* gb = grid_ != nullptr ? grid_->boundary[mk].data() : nullptr;
         for (std::size_t k = 0; k < bv.nodes.size() && bv.nodes[k] < no; ++k) {
             const Index n = bv.nodes[k];
             const Vec3 nv(bn[3 * k], bn[3 * k + 1], bn[3 * k + 2]);
-            t[n_jst * static_cast<std::size_t>(n) + 6] +=
-                radius(W + 5 * static_cast<std::size_t>(n), nv, gamma_);
+            t[n_jst * static_cast<std::size_t>(n) + 6] += radius(
+                W + 5 * static_cast<std::size_t>(n), nv, gb != nullptr ? gb[k] : 0.0, gamma_);
         }
     }
     for (Index n = 0; n < no; ++n) {
@@ -827,28 +982,32 @@ void SpatialOperator::residual_jst(NodeStates& R) {
     const double* W = W_.data();
     const double* t = jst_.data();
     const double* sn = dual.edge_normals.data();
+    const double* ge = grid_ != nullptr ? grid_->edges.data() : nullptr;
     double* r = R.data();
     for (Index e = 0; e < n_edges_active_; ++e) {
         const Index i = dual.edges[e][0], j = dual.edges[e][1];
         const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        const double g = ge != nullptr ? ge[e] : 0.0;
         const double* Wi = W + 5 * static_cast<std::size_t>(i);
         const double* Wj = W + 5 * static_cast<std::size_t>(j);
         const Vec5 Vi = jst_variables(Wi, gg), Vj = jst_variables(Wj, gg);
-        // Central flux of the mean density, velocity, pressure and total enthalpy (as SU2).
+        // Central flux of the mean density, velocity, pressure and total enthalpy (as SU2),
+        // through the moving face: (rho (V - g), rho u (V - g) + p n, rho H (V - g) + p g).
         const double rho = 0.5 * (Wi[0] + Wj[0]);
         const Vec3 u(0.5 * (Wi[1] + Wj[1]), 0.5 * (Wi[2] + Wj[2]), 0.5 * (Wi[3] + Wj[3]));
         const double H = 0.5 * (Vi[4] / Wi[0] + Vj[4] / Wj[0]);
-        const double mass = rho * u.dot(nv);
+        const double p = 0.5 * (Wi[4] + Wj[4]);
+        const double mass = rho * (u.dot(nv) - g);
         Vec5 F;
         F[0] = mass;
-        F.segment<3>(1) = mass * u + (0.5 * (Wi[4] + Wj[4])) * nv;
-        F[4] = mass * H;
+        F.segment<3>(1) = mass * u + p * nv;
+        F[4] = mass * H + p * g;
         const double* ti = t + n_jst * static_cast<std::size_t>(i);
         const double* tj = t + n_jst * static_cast<std::size_t>(j);
         const JstCoefficients c =
             jst_coefficients(jst_neighbours_[static_cast<std::size_t>(i)],
                              jst_neighbours_[static_cast<std::size_t>(j)], ti, tj,
-                             radius(Wi, nv, gamma_), radius(Wj, nv, gamma_), k2, k4);
+                             radius(Wi, nv, g, gamma_), radius(Wj, nv, g, gamma_), k2, k4);
         for (int k = 0; k < 5; ++k)
             F[k] += (c.e2 * (Vi[k] - Vj[k]) - c.e4 * (ti[k] - tj[k])) * c.s_lambda;
         Eigen::Map<Vec5>(r + 5 * static_cast<std::size_t>(i)) += F;
@@ -865,16 +1024,18 @@ void SpatialOperator::jacobian_jst(const NodeStates& U, BlockMatrix& J) const {
     const double k2 = options_.flux.jst_k2, k4 = options_.flux.jst_k4;
     const double* t = jst_.data();
     const double* sn = dual.edge_normals.data();
+    const double* ge = grid_ != nullptr ? grid_->edges.data() : nullptr;
     for (Index e = 0; e < n_edges_active_; ++e) {
         const Index i = dual.edges[e][0], j = dual.edges[e][1];
         const Vec3 nv(sn[3 * e], sn[3 * e + 1], sn[3 * e + 2]);
+        const double g = ge != nullptr ? ge[e] : 0.0;
         const Vec5 Wi = primitive(U.col(i), gamma_), Wj = primitive(U.col(j), gamma_);
         const double* ti = t + n_jst * static_cast<std::size_t>(i);
         const double* tj = t + n_jst * static_cast<std::size_t>(j);
-        const JstCoefficients c =
-            jst_coefficients(jst_neighbours_[static_cast<std::size_t>(i)],
-                             jst_neighbours_[static_cast<std::size_t>(j)], ti, tj,
-                             radius(Wi.data(), nv, gamma_), radius(Wj.data(), nv, gamma_), k2, k4);
+        const JstCoefficients c = jst_coefficients(jst_neighbours_[static_cast<std::size_t>(i)],
+                                                   jst_neighbours_[static_cast<std::size_t>(j)], ti,
+                                                   tj, radius(Wi.data(), nv, g, gamma_),
+                                                   radius(Wj.data(), nv, g, gamma_), k2, k4);
         // d(-(L_i - L_j))/dU_i = NL_i + [U_i enters L_j]; likewise for j.
         const bool bi = jst_boundary_[static_cast<std::size_t>(i)] != 0;
         const bool bj = jst_boundary_[static_cast<std::size_t>(j)] != 0;
@@ -882,9 +1043,9 @@ void SpatialOperator::jacobian_jst(const NodeStates& U, BlockMatrix& J) const {
         const double aj = tj[7] + ((!bi || bj) ? 1.0 : 0.0);
         // Lower bound of the dissipation coefficient: k2 s2 / 4 (spatial.hpp).
         const double e_min = 0.25 * k2 * c.s2;
-        const Mat5 A = 0.5 * physical_flux_jacobian(Wi, nv, gamma_) +
+        const Mat5 A = 0.5 * physical_flux_jacobian(Wi, nv, g, gamma_) +
                        (std::max(e_min, c.e2 + c.e4 * ai) * c.s_lambda) * jst_transform(Wi, gamma_);
-        const Mat5 B = 0.5 * physical_flux_jacobian(Wj, nv, gamma_) -
+        const Mat5 B = 0.5 * physical_flux_jacobian(Wj, nv, g, gamma_) -
                        (std::max(e_min, c.e2 + c.e4 * aj) * c.s_lambda) * jst_transform(Wj, gamma_);
         // R_i += F(U_i, U_j), R_j -= F(U_i, U_j).
         J.add(J.diagonal(i), A);

@@ -47,44 +47,94 @@ struct FluxOptions {
     double jst_k4 = 0.02;
 };
 
-/// Physical Euler flux F(W).n.
-[[nodiscard]] Vec5 physical_flux(const Vec5& W, const Vec3& n, double gamma) noexcept;
+/// Physical Euler flux through a moving face, F(W).n - g U(W): `g` is the face's grid flux, the
+/// integral of the grid velocity's component along the area vector over the face (m^3/s in the
+/// solver's units; the face's swept volume per time step, so that the geometric conservation law
+/// holds, docs/euler.md "Moving meshes"). Written (rho (V - g), rho u (V - g) + p n,
+/// rho H (V - g) + p g) with V = u.n; g = 0 gives the fixed-face flux bit for bit.
+[[nodiscard]] Vec5 physical_flux(const Vec5& W, const Vec3& n, double g, double gamma) noexcept;
+/// Physical Euler flux F(W).n of a fixed face.
+[[nodiscard]] inline Vec5 physical_flux(const Vec5& W, const Vec3& n, double gamma) noexcept {
+    return physical_flux(W, n, 0.0, gamma);
+}
 
 /// Numerical flux from the left state WL (the edge's first node) to the right state WR through
-/// `n` (pointing from left to right). Consistent: numerical_flux(W, W, n) = physical_flux(W, n).
-[[nodiscard]] Vec5 numerical_flux(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma,
-                                  const FluxOptions& options) noexcept;
+/// `n` (pointing from left to right) moving with grid flux `g` (arbitrary Lagrangian-Eulerian
+/// form: the upwind dissipation is |A - g I| with the eigenvalues u.n - g, u.n - g +- c |n|, the
+/// entropy fix relative to |u.n - g| + c |n|, HLLC's waves sampled at the face's speed g / |n|).
+/// Consistent: numerical_flux(W, W, n, g) = physical_flux(W, n, g). g = 0: bit for bit the
+/// fixed-face flux.
+[[nodiscard]] Vec5 numerical_flux(const Vec5& WL, const Vec5& WR, const Vec3& n, double g,
+                                  double gamma, const FluxOptions& options) noexcept;
+/// Numerical flux through a fixed face (g = 0).
+[[nodiscard]] inline Vec5 numerical_flux(const Vec5& WL, const Vec5& WR, const Vec3& n,
+                                         double gamma, const FluxOptions& options) noexcept {
+    return numerical_flux(WL, WR, n, 0.0, gamma, options);
+}
 
 /// First-order Jacobians of `numerical_flux` with respect to the conservative left and right
-/// states, for the implicit operator: for Roe, dF/dUL = (A(UL) + |A_roe|) / 2 and
-/// dF/dUR = (A(UR) - |A_roe|) / 2 with the dissipation matrix frozen; HLLC uses the same
-/// (a documented approximation: it only steers the implicit iteration).
-void flux_jacobians(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma,
+/// states, for the implicit operator: for Roe, dF/dUL = (A(UL) - g I + |A_roe - g I|) / 2 and
+/// dF/dUR = (A(UR) - g I - |A_roe - g I|) / 2 with the dissipation matrix frozen; HLLC uses the
+/// same (a documented approximation: it only steers the implicit iteration).
+void flux_jacobians(const Vec5& WL, const Vec5& WR, const Vec3& n, double g, double gamma,
                     const FluxOptions& options, Mat5& dF_dUL, Mat5& dF_dUR) noexcept;
+/// `flux_jacobians` of a fixed face (g = 0).
+inline void flux_jacobians(const Vec5& WL, const Vec5& WR, const Vec3& n, double gamma,
+                           const FluxOptions& options, Mat5& dF_dUL, Mat5& dF_dUR) noexcept {
+    flux_jacobians(WL, WR, n, 0.0, gamma, options, dF_dUL, dF_dUR);
+}
 
-/// Exact Jacobian d(F(W).n)/dU of the physical flux (A(U) n).
-[[nodiscard]] Mat5 physical_flux_jacobian(const Vec5& W, const Vec3& n, double gamma) noexcept;
+/// Exact Jacobian d(F(W).n - g U)/dU of the physical flux through a moving face, A(U) n - g I.
+[[nodiscard]] Mat5 physical_flux_jacobian(const Vec5& W, const Vec3& n, double g,
+                                          double gamma) noexcept;
+/// Exact Jacobian A(U) n of the physical flux through a fixed face.
+[[nodiscard]] inline Mat5 physical_flux_jacobian(const Vec5& W, const Vec3& n,
+                                                 double gamma) noexcept {
+    return physical_flux_jacobian(W, n, 0.0, gamma);
+}
 
-/// Largest wave speed times area, |u.n| + c |n| (for local time steps).
-[[nodiscard]] double spectral_radius(const Vec5& W, const Vec3& n, double gamma) noexcept;
+/// Largest wave speed relative to the face times area, |u.n - g| + c |n| (local time steps).
+[[nodiscard]] double spectral_radius(const Vec5& W, const Vec3& n, double g, double gamma) noexcept;
+/// |u.n| + c |n| of a fixed face.
+[[nodiscard]] inline double spectral_radius(const Vec5& W, const Vec3& n, double gamma) noexcept {
+    return spectral_radius(W, n, 0.0, gamma);
+}
 
-/// Slip-wall / symmetry-plane flux through the outward boundary area vector `n`: the
-/// pressure alone, (0, p n, 0), with the wall pressure taken from the node's state.
-[[nodiscard]] Vec5 wall_flux(const Vec5& W, const Vec3& n, double gamma) noexcept;
+/// Slip-wall / symmetry-plane flux through the outward boundary area vector `n` of a wall face
+/// moving with grid flux `g`: the wall moves with the fluid's normal velocity, (u - v_grid).n = 0,
+/// so no mass crosses it and the flux is (0, p n, p g), the pressure force and its work on the
+/// moving wall, with the wall pressure taken from the node's state.
+[[nodiscard]] Vec5 wall_flux(const Vec5& W, const Vec3& n, double g, double gamma) noexcept;
+/// Wall flux (0, p n, 0) of a fixed wall.
+[[nodiscard]] inline Vec5 wall_flux(const Vec5& W, const Vec3& n, double gamma) noexcept {
+    return wall_flux(W, n, 0.0, gamma);
+}
 /// Jacobian of `wall_flux` with respect to the node's conservative state.
-[[nodiscard]] Mat5 wall_flux_jacobian(const Vec5& W, const Vec3& n, double gamma) noexcept;
+[[nodiscard]] Mat5 wall_flux_jacobian(const Vec5& W, const Vec3& n, double g,
+                                      double gamma) noexcept;
+/// Jacobian of the fixed wall's flux.
+[[nodiscard]] inline Mat5 wall_flux_jacobian(const Vec5& W, const Vec3& n, double gamma) noexcept {
+    return wall_flux_jacobian(W, n, 0.0, gamma);
+}
 
-/// Characteristic far-field flux through the outward area vector `n` between the interior
-/// state W and the free stream W_inf: the boundary state from the locally one-dimensional
-/// Riemann invariants (incoming ones from the free stream, outgoing ones from the interior;
-/// entropy and tangential velocity from the upwind side), then the physical flux of that state.
-/// The interior's normal Mach number u.n / c picks the case: <= -1 supersonic inflow (free
-/// stream only), >= 1 supersonic outflow (interior only), else subsonic, where
-/// R+ = u.n + 2c/(gamma-1) comes from the interior, R- = u.n - 2c/(gamma-1) from the free
-/// stream, and the sign of the boundary normal velocity (R+ + R-)/2 says which side is upwind.
-/// `dF_dU`, when not null, receives the exact (analytic) Jacobian with respect to the interior
-/// conservative state; it is undefined only on the switches between the cases.
-[[nodiscard]] Vec5 farfield_flux(const Vec5& W, const Vec5& W_inf, const Vec3& n, double gamma,
-                                 Mat5* dF_dU = nullptr) noexcept;
+/// Characteristic far-field flux through the outward area vector `n` (moving with grid flux `g`)
+/// between the interior state W and the free stream W_inf: the boundary state from the locally
+/// one-dimensional Riemann invariants (incoming ones from the free stream, outgoing ones from the
+/// interior; entropy and tangential velocity from the upwind side), then the physical flux of that
+/// state through the moving face, F(W_b).n - g U(W_b). The interior's normal Mach number relative
+/// to the face, (u.n - s) / c with s = g / |n| the face's normal speed, picks the case: <= -1
+/// supersonic inflow (free stream only), >= 1 supersonic outflow (interior only), else subsonic,
+/// where R+ = u.n + 2c/(gamma-1) comes from the interior, R- = u.n - 2c/(gamma-1) from the free
+/// stream, and the sign of the boundary normal velocity relative to the face, (R+ + R-)/2 - s,
+/// says which side is upwind. `dF_dU`, when not null, receives the exact (analytic) Jacobian
+/// with respect to the interior conservative state; it is undefined only on the switches between
+/// the cases.
+[[nodiscard]] Vec5 farfield_flux(const Vec5& W, const Vec5& W_inf, const Vec3& n, double g,
+                                 double gamma, Mat5* dF_dU = nullptr) noexcept;
+/// Far-field flux through a fixed face (g = 0).
+[[nodiscard]] inline Vec5 farfield_flux(const Vec5& W, const Vec5& W_inf, const Vec3& n,
+                                        double gamma, Mat5* dF_dU = nullptr) noexcept {
+    return farfield_flux(W, W_inf, n, 0.0, gamma, dF_dU);
+}
 
 }  // namespace manta::euler

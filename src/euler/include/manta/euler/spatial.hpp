@@ -78,6 +78,18 @@
 /// Mixed: strong, except at sharp-edge wall nodes (`SpatialOptions::sharp_edge_deg`), where the
 /// one wall condition is tangency to the edge's bisector (`WallTangency::mixed`).
 ///
+/// Moving meshes (arbitrary Lagrangian-Eulerian form; docs/euler.md, "Moving meshes"; ADR 0003):
+/// `set_grid_fluxes` gives every dual face its grid flux g = integral of v_grid . n dA (m^3/s,
+/// oriented like the face's area vector: from i to j on edges, outward on the boundary), and every
+/// flux becomes F.n - g U (flux.hpp), so that R_i is the flux out of a dual cell that moves: the
+/// semi-discrete equations are d(V_i U_i)/dt + R_i(U) = 0. Walls move with the grid, (u -
+/// v_grid).n = 0 (pressure work p g in the energy; strong tangency imposes rho (u - v_grid) . e_k =
+/// 0), the spectral radii use |u.n - g| + c |n|. With grid fluxes from the faces' swept volumes
+/// (mesh::swept_volumes) a uniform flow stays uniform to round-off. After the mesh moves:
+/// Mesh::set_coordinates, mesh::update_dual_metrics, then `update_geometry` here (least-squares
+/// matrices, symmetry and wall normals, tangency directions, sharp-edge sides); no allocation.
+/// Without grid fluxes (the default) every result is bit for bit the fixed-mesh one.
+///
 /// Partition-local meshes (docs/parallel.md): nodes [0, n_owned) are owned, the rest ghosts.
 /// Edges between two ghosts are skipped; residuals, gradients and limiters are computed for
 /// owned nodes, the ghosts' gradients and limiters come from one halo exchange per residual.
@@ -210,6 +222,28 @@ public:
     /// (1 + 1/CFL) lambda_i sum_k e_k e_k^T added to the diagonal block's momentum part.
     void apply_wall_tangency(const std::vector<double>& lambda, double cfl, BlockMatrix& J) const;
 
+    /// Refresh everything the operator caches from the mesh's coordinates and the dual metrics
+    /// (least-squares matrices, symmetry-plane normals, wall tangency directions and targets,
+    /// sharp-edge sides), after Mesh::set_coordinates and mesh::update_dual_metrics of the
+    /// domain's mesh and metrics; no allocation. Which nodes are sharp-edge nodes (`mixed`) stays
+    /// as classified at construction. InputError if the metrics no longer fit the mesh.
+    void update_geometry();
+
+    /// Grid fluxes of a moving mesh (above): `g->edges[e]` per edge of dual->edges and
+    /// `g->boundary[mk][k]` per boundary vertex (m^3/s; e.g. swept volumes divided by the time
+    /// step, combined with the weights of the time scheme); null: a fixed mesh. Borrowed: `g`
+    /// must outlive its use; its values may change between residuals, but the strong-tangency
+    /// targets are computed here and in `update_geometry`, so call one of them after changing
+    /// them. `node_velocities` (3 x n_local, m/s, optional): the grid velocity of each node, used
+    /// only for the targets of the strong tangency conditions (rho u . e_k = rho v_grid . e_k);
+    /// without it the targets come from the boundary grid fluxes (the normal speed g / |n| of each
+    /// marker's dual face, orthonormalised with the directions) and the sharp-edge condition of
+    /// `mixed` tangency keeps the target 0. InputError if the sizes do not fit the domain.
+    void set_grid_fluxes(const mesh::DualFaceValues* g,
+                         const Eigen::Matrix3Xd* node_velocities = nullptr);
+    /// The grid fluxes set by `set_grid_fluxes` (null: fixed mesh).
+    [[nodiscard]] const mesh::DualFaceValues* grid_fluxes() const noexcept { return grid_; }
+
     /// A matrix with the pattern `jacobian` expects (n_owned rows, n_local columns).
     [[nodiscard]] BlockMatrix make_jacobian_matrix() const;
 
@@ -258,7 +292,11 @@ private:
     void compute_limiter();
     void add_boundary_fluxes(double* r) const;
     void init_wall_tangency();
+    void refresh_wall_tangency();
     void init_sharp_edges();
+    void refresh_sharp_sides();
+    void refresh_symmetry_normals();
+    void compute_least_squares();
 
     Domain domain_;
     std::vector<BoundaryKind> kinds_;
@@ -273,10 +311,18 @@ private:
     /// Strong tangency: the owned wall and symmetry nodes and their orthonormal normals.
     struct TangencyNode {
         mesh::Index node;
-        int count;              ///< 1 to 3 directions
-        std::array<Vec3, 3> e;  ///< orthonormal
+        int count;                  ///< 1 to 3 directions
+        std::array<Vec3, 3> e;      ///< orthonormal
+        std::array<double, 3> b{};  ///< target grid velocity along each e (0: fixed mesh)
+        int sharp = -1;             ///< index in sharp_sides_ of its bisector condition, or -1
+        std::int32_t first = 0;     ///< its normals: tangency_sources_[first, first + n)
+        std::int32_t n = 0;
     };
     std::vector<TangencyNode> tangency_;
+    /// (marker, index in the marker's boundary vertices) of each tangency node's normals.
+    std::vector<std::array<mesh::Index, 2>> tangency_sources_;
+    const mesh::DualFaceValues* grid_ = nullptr;       ///< grid fluxes, null: fixed mesh
+    const Eigen::Matrix3Xd* grid_velocity_ = nullptr;  ///< node grid velocities (optional)
     /// `mixed` tangency: 1 for each owned sharp-edge wall node (weak there), else 0; empty
     /// otherwise.
     std::vector<char> sharp_;
@@ -285,13 +331,17 @@ private:
         std::array<Vec3, 2> sides;  ///< area-vector sums of the edge's two sides' faces
     };
     std::vector<SharpNode> sharp_sides_;  ///< the sharp nodes, ascending
-    std::vector<double> W_;               ///< 5 per local node: primitive states
+    /// (index in sharp_sides_, wall face, side 0 or 1) of every wall face at a sharp node.
+    std::vector<std::array<mesh::Index, 3>> sharp_faces_;
+    std::vector<double> W_;       ///< 5 per local node: primitive states
     std::vector<double> gp_;      ///< 20 per local node: gradient (5x3, row-major) then phi (5)
     std::vector<double> minmax_;  ///< 10 per owned node: neighbourhood min (5), max (5) of W
     std::vector<double> lsq_;     ///< 6 per owned node: inverse normal matrix, xx xy xz yy yz zz
     std::vector<mesh::Index> symmetry_nodes_;  ///< owned nodes on symmetry markers (one per marker)
     std::vector<double> symmetry_normals_;     ///< 3 per entry of symmetry_nodes_: unit normal
     std::vector<char> symmetry_is_wall_;       ///< per entry of symmetry_nodes_: 1 on a wall
+    /// per entry of symmetry_nodes_: (marker, index in the marker's boundary vertices)
+    std::vector<std::array<mesh::Index, 2>> symmetry_sources_;
     /// JST, 8 per local node: undivided Laplacian of V (5), pressure sensor, summed spectral
     /// radius, number of Laplacian neighbours (ghosts: exchanged).
     std::vector<double> jst_;
