@@ -87,10 +87,7 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
         if (best) {
             // The residual drop counts from the peak of the cold run that started the chain, so
             // a warm start converges to the same level, not 6 orders below its own small start.
-            solver.set_state(best->U);
-            IterationState st = solver.iteration_state();
-            st.peak_log10_residual = best->peak_log10_residual;
-            solver.set_iteration_state(st);
+            solver.warm_start(best->U, best->peak_log10_residual);
             warm = true;
         }
     }

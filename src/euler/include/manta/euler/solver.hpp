@@ -4,6 +4,8 @@
 /// ramped and adaptive CFL number, the first-order Jacobian in 5x5 blocks solved by FGMRES with
 /// block ILU(0), divergence detection with automatic CFL back-off, convergence to a residual
 /// drop and to settled force coefficients, forces and moments on the walls (docs/euler.md).
+/// The step itself is `PseudoTimeStep`, with hooks for the dual-time solver's extra terms and
+/// a stopping rule of the caller's; `SteadySolver` runs it with none and `steady_stop`.
 ///
 /// One `SteadySolver` works on one partition-local mesh (the whole mesh in a serial run); with
 /// several MPI processes every process runs the same iteration on its part, and reductions and
@@ -150,6 +152,137 @@ struct IterationState {
     std::vector<std::array<double, 3>> window;
 };
 
+/// Extra terms of the pseudo-time system, for dual time stepping: a step drives
+///
+///   R*(U) = R(U) + D U - S
+///
+/// to zero instead of R(U), with D a scalar per node (3 V / (2 dt) for the second-order backward
+/// difference) and S a 5-vector per node (the older time levels' part). D U enters the residual
+/// and D the diagonal of the implicit matrix. Without them a step is the steady solver's, bit
+/// for bit.
+struct StepTerms {
+    /// D, one value per local node (the owned ones are read); empty: none.
+    std::span<const double> diagonal;
+    /// S, 5 x n_local (the owned columns are read); null: none.
+    const NodeStates* source = nullptr;
+};
+
+/// What a stopping rule sees: the state at the start of a step, before its update.
+struct StepStatus {
+    int iteration = 0;
+    std::array<double, 5> log10_residual{};  ///< log10 RMS of R* per equation
+    double drop = 0;           ///< orders of the density residual below its peak (0: first order)
+    bool first_order = false;  ///< a first-order start iteration
+    bool at_roundoff = false;  ///< density residual at round-off level
+    /// CL, CD, CY each within `coefficient_tolerance` over the last `coefficient_window` steps.
+    bool settled = false;
+    ForceCoefficients forces;  ///< of the state
+};
+
+/// A stopping rule's answer.
+struct StopDecision {
+    bool stop = false;
+    bool converged = false;
+    std::string reason;  ///< one line, when stopping
+};
+
+/// Called once per step, after the residual and before the update.
+using StopRule = std::function<StopDecision(const StepStatus&)>;
+
+/// How a step ended.
+enum class StepResult {
+    updated,     ///< the state was updated and the iteration counter went up
+    backed_off,  ///< divergence: the last sound state restored, the CFL number cut, nothing else
+    stopped,     ///< the rule stopped it before the update: state and iteration state unchanged
+};
+
+/// One step's result.
+struct StepOutcome {
+    StepResult result = StepResult::updated;
+    IterationRecord record;  ///< updated or stopped; wall_s is left 0 (the caller's clock)
+    StepStatus status;       ///< updated or stopped
+    StopDecision decision;   ///< stopped
+};
+
+/// One implicit backward-Euler step in pseudo-time, shared by the steady and the dual-time
+/// solvers (docs/euler.md#the-pseudo-time-step): residual (plus `StepTerms`), divergence test and
+/// CFL back-off, the stopping rule, limiter freezing, CFL control, the first-order Jacobian
+/// (plus the terms' diagonal) solved by FGMRES, and the update scaled for positivity. It owns the
+/// spatial operator, the matrix, the preconditioner and the work arrays; the caller owns the
+/// state U and the `IterationState`, which hold everything that decides later steps (so a
+/// checkpoint of them, the back-off state and the frozen limiter resumes bit for bit).
+class PseudoTimeStep {
+public:
+    /// Validates `setup` (flow, solver, spatial options; the number of roles; a reference area).
+    /// InputError when invalid.
+    PseudoTimeStep(const Domain& domain, const parallel::Communicator& comm,
+                   const CaseSetup& setup);
+
+    /// The iteration state of a fresh start (CFL numbers from the settings).
+    [[nodiscard]] IterationState initial_state() const;
+    /// Before a run of steps: the limiter frozen or released to match `it.limiter_frozen`, the
+    /// CFL cap set if unset.
+    void begin(IterationState& it);
+    /// One step on U (5 x n_local, ghosts current) with the iteration state `it`. The rule is
+    /// asked after the residual; on `stopped` neither U nor `it` change. ConvergenceError after
+    /// `max_backoffs` back-offs.
+    StepOutcome step(NodeStates& U, IterationState& it, const StopRule& stop,
+                     const StepTerms& terms = {});
+
+    /// Wall forces of U.
+    [[nodiscard]] ForceCoefficients forces(const NodeStates& U) const;
+    /// The reference area used (the configured one, or the projected wall area).
+    [[nodiscard]] double reference_area() const noexcept { return area_; }
+    /// Copy the owned values of U onto its ghosts.
+    void exchange(NodeStates& U) const;
+    /// The last step's residual R* (5 x n_local, owned columns; after strong wall tangency).
+    [[nodiscard]] const NodeStates& residual() const noexcept { return R_; }
+
+    /// The state the next back-off returns to (5 per local node).
+    [[nodiscard]] const std::vector<float>& backoff_state() const noexcept { return U_good_; }
+    /// Replace it (5 values per local node); InputError on a size mismatch.
+    void set_backoff_state(std::vector<float> U);
+    void set_backoff_state(const NodeStates& U);
+    /// The second-order operator's limiter (5 per local node); empty without a limiter.
+    [[nodiscard]] std::vector<double> limiter_values() const;
+    void set_frozen_limiter(std::span<const double> phi);
+    void freeze_limiter(bool frozen) noexcept { op_.freeze_limiter(frozen); }
+
+    [[nodiscard]] const CaseSetup& setup() const noexcept { return setup_; }
+    [[nodiscard]] const Vec5& free_stream_primitive() const noexcept { return W_inf_; }
+    [[nodiscard]] const Domain& domain() const noexcept { return domain_; }
+    [[nodiscard]] const parallel::Communicator& communicator() const noexcept { return comm_; }
+    /// Bytes of the step's arrays (operator, matrix, preconditioner, Krylov space, residual,
+    /// back-off state, work vectors).
+    [[nodiscard]] std::size_t memory_bytes() const noexcept;
+
+private:
+    [[nodiscard]] std::array<double, 5> rms_residual() const;
+
+    const Domain domain_;
+    const parallel::Communicator& comm_;
+    CaseSetup setup_;
+    Vec5 W_inf_;
+    double area_ = 0;
+    SpatialOperator op_;
+    std::unique_ptr<SpatialOperator> op_first_;  ///< only with first-order start iterations
+    NodeStates R_;
+    std::vector<float> U_good_;  ///< last state known to be sound, for CFL back-off (a recovery
+                                 ///< point: single precision is enough)
+    BlockMatrix J_;
+    std::unique_ptr<Preconditioner> precond_;
+    Fgmres krylov_;
+    std::vector<double> lambda_;
+    std::vector<double> dU_;
+    std::int64_t n_global_nodes_ = 0;
+    double log10_roundoff_ = -300.0;  ///< density residual at round-off level
+};
+
+/// The steady solver's stopping rule: converged when the density residual is
+/// `residual_drop` orders below its peak (or at round-off level) and the coefficients have
+/// settled, outside the first-order start iterations; stopped at `max_iterations`.
+[[nodiscard]] StopDecision steady_stop(const SolverSettings& s, const StepStatus& st);
+
 /// The steady solver on one (partition-local) mesh.
 class SteadySolver {
 public:
@@ -161,8 +294,9 @@ public:
     /// false to stop.
     using Monitor = std::function<bool(const IterationRecord&)>;
 
-    /// Iterate to convergence (or the iteration limit). ConvergenceError if the iteration
-    /// diverges after `max_backoffs` CFL back-offs.
+    /// Iterate to convergence (or the iteration limit): `PseudoTimeStep` with no extra terms and
+    /// the rule `steady_stop`. ConvergenceError if the iteration diverges after `max_backoffs`
+    /// CFL back-offs.
     SolveOutcome solve(const Monitor& monitor = {});
 
     /// Conservative state of every local node (owned, then ghosts).
@@ -170,6 +304,10 @@ public:
     /// Replace the owned nodes' state (ghosts are exchanged here). InputError on a size mismatch
     /// or a non-physical state (naming the node).
     void set_state(const NodeStates& U);
+    /// Start from U (a converged solution nearby) with the residual drop counted from
+    /// `peak_log10_residual`, the peak of the run that computed it, so that the warm-started
+    /// run converges to the same residual level (`manta cfd --initial`, `EulerSource`).
+    void warm_start(const NodeStates& U, double peak_log10_residual);
     /// The iteration state kept in checkpoints. `solve` stops without changing it (a converged
     /// or finished state solved again stops at once with the same outcome), so a checkpoint
     /// taken in the monitor or after `solve` resumes exactly.
@@ -179,19 +317,21 @@ public:
     void set_iteration_state(const IterationState& s);
     /// The state the next CFL back-off returns to (conservative, 5 per local node); `set_state`
     /// sets it to the new state.
-    [[nodiscard]] const std::vector<float>& backoff_state() const noexcept { return U_good_; }
+    [[nodiscard]] const std::vector<float>& backoff_state() const noexcept {
+        return step_.backoff_state();
+    }
     /// Replace the back-off state (5 values per local node, ghosts included). InputError on a
     /// size mismatch.
-    void set_backoff_state(std::vector<float> U);
+    void set_backoff_state(std::vector<float> U) { step_.set_backoff_state(std::move(U)); }
     /// The limiter values of the second-order operator (5 per local node), the frozen ones when
     /// `iteration_state().limiter_frozen`; empty without a limiter.
-    [[nodiscard]] std::vector<double> limiter_values() const;
+    [[nodiscard]] std::vector<double> limiter_values() const { return step_.limiter_values(); }
     /// Set the frozen limiter values (5 per local node, ghosts included) after a resume.
     /// InputError on a size mismatch or values outside [0, 1].
-    void set_frozen_limiter(std::span<const double> phi);
+    void set_frozen_limiter(std::span<const double> phi) { step_.set_frozen_limiter(phi); }
 
     /// Wall forces of the current state.
-    [[nodiscard]] ForceCoefficients forces() const;
+    [[nodiscard]] ForceCoefficients forces() const { return step_.forces(U_); }
     /// Pressure coefficient (p - p_inf) / (rho_inf V_inf^2 / 2) of every local node.
     [[nodiscard]] std::vector<double> pressure_coefficient() const;
     /// Primitive state (rho, u, v, w, p) of every local node, node-major.
@@ -199,37 +339,26 @@ public:
     /// Local Mach number of every local node.
     [[nodiscard]] std::vector<double> mach_number() const;
 
-    [[nodiscard]] const CaseSetup& setup() const noexcept { return setup_; }
-    [[nodiscard]] const Vec5& free_stream_primitive() const noexcept { return W_inf_; }
+    [[nodiscard]] const CaseSetup& setup() const noexcept { return step_.setup(); }
+    [[nodiscard]] const Vec5& free_stream_primitive() const noexcept {
+        return step_.free_stream_primitive();
+    }
     /// The reference area used (the configured one, or the projected wall area).
-    [[nodiscard]] double reference_area() const noexcept { return area_; }
+    [[nodiscard]] double reference_area() const noexcept { return step_.reference_area(); }
     /// Bytes held by the solver's arrays on this process (mesh and metrics not included).
     [[nodiscard]] std::size_t memory_bytes() const noexcept;
 
 private:
-    void exchange(NodeStates& U) const;
-    [[nodiscard]] std::array<double, 5> rms_residual() const;
-
-    const Domain domain_;
-    const parallel::Communicator& comm_;
-    CaseSetup setup_;
-    Vec5 W_inf_;
-    double area_ = 0;
-    SpatialOperator op_;
-    std::unique_ptr<SpatialOperator> op_first_;  ///< only with first-order start iterations
+    PseudoTimeStep step_;
     NodeStates U_;
-    NodeStates R_;
-    std::vector<float> U_good_;  ///< last state known to be sound, for CFL back-off (a recovery
-                                 ///< point: single precision is enough)
-    BlockMatrix J_;
-    std::unique_ptr<Preconditioner> precond_;
-    Fgmres krylov_;
-    std::vector<double> lambda_;
-    std::vector<double> dU_;
     IterationState it_;
-    std::int64_t n_global_nodes_ = 0;
-    double log10_roundoff_ = -300.0;  ///< density residual at round-off level
 };
+
+/// Pressure coefficient, primitive state (node-major) and local Mach number of every column of
+/// U (shared by the steady and the dual-time solvers).
+[[nodiscard]] std::vector<double> pressure_coefficient(const NodeStates& U, const CaseSetup& s);
+[[nodiscard]] std::vector<double> primitive_state(const NodeStates& U, const CaseSetup& s);
+[[nodiscard]] std::vector<double> mach_number(const NodeStates& U, const CaseSetup& s);
 
 /// Default role of a marker from its name (case-insensitive): names containing "far", "inlet",
 /// "outlet", "inflow" or "outflow" are far field; "sym" symmetry; "wall", "wing", "airfoil",
