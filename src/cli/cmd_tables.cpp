@@ -20,11 +20,8 @@
 #include "manta/core/io.hpp"
 #include "manta/core/units.hpp"
 #include "manta/core/version.hpp"
-#include "manta/euler/config.hpp"
 #include "manta/euler/source.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
-#include "manta/mesh/readers.hpp"
-#include "manta/mesh/reorder.hpp"
 #include "manta/tables/analytic_source.hpp"
 #include "manta/tables/campaign.hpp"
 #include "manta/tables/export.hpp"
@@ -175,26 +172,16 @@ nlohmann::json report_json(const tables::ScenarioReport& r) {
     return j;
 }
 
-/// The Euler source of a campaign: the mesh (nodes in reverse Cuthill-McKee order, as `manta
-/// cfd` uses them) and the `manta cfd` configuration's roles, reference values, numerics and
-/// solver settings; the flow condition comes from each sample.
+/// The Euler source of a campaign: the mesh and the `manta cfd` configuration, set up as
+/// `manta cfd` sets up a case (`euler::EulerSource::from_files`); the flow condition comes from
+/// each sample.
 std::unique_ptr<aero::AeroSource> make_euler_source(const tables::SourceSpec& spec) {
     if (!std::filesystem::exists(spec.mesh))
         throw ConfigError(
             fmt::format("{}: mesh file '{}' does not exist; expected a mesh that "
                         "manta cfd reads (SU2, gmsh, CGNS)",
                         spec.where, spec.mesh.string()));
-    euler::CfdConfig cfg;
-    if (!spec.cfd_config.empty()) cfg = euler::read_cfd_config(spec.cfd_config);
-    mesh::Mesh m = mesh::reorder_reverse_cuthill_mckee(mesh::read_mesh(spec.mesh)).mesh;
-    euler::CaseSetup setup;
-    setup.flow.gamma = cfg.gamma;
-    setup.reference = cfg.reference;
-    setup.spatial = cfg.spatial;
-    setup.solver = cfg.solver;
-    setup.roles = euler::resolve_roles(m, cfg);
-    return std::make_unique<euler::EulerSource>(std::move(m), std::move(setup),
-                                                spec.mesh.filename().string());
+    return euler::EulerSource::from_files(spec.mesh, spec.cfd_config);
 }
 
 int run_tables(const TablesArgs& a) {

@@ -10,6 +10,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/core/version.hpp"
+#include "manta/euler/case.hpp"
 #include "manta/euler/output.hpp"
 
 namespace manta::euler {
@@ -44,6 +45,16 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label)
         o.gradient == GradientMethod::least_squares ? "lsq" : "gg", o.limiter, o.venkatakrishnan_k,
         o.flux.entropy_fix, setup_.flow.gamma, s.residual_drop, r.area, r.chord, r.span,
         r.moment_point.x(), r.moment_point.y(), r.moment_point.z());
+}
+
+std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path& mesh,
+                                                     const std::filesystem::path& config) {
+    const CfdConfig cfg = config.empty() ? CfdConfig{} : read_cfd_config(config);
+    CaseMesh m = read_case_mesh(mesh);
+    CaseSetup setup = case_setup(cfg);
+    setup.roles = resolve_roles(m.mesh, cfg);
+    return std::make_unique<EulerSource>(std::move(m.mesh), std::move(setup),
+                                         mesh.filename().string());
 }
 
 EulerSourceStats EulerSource::stats() const {

@@ -10,6 +10,7 @@
 /// Cl = -CMx, Cm = CMy, Cn = -CMz. Rotation rates and control deflections need moving and
 /// deforming meshes (issue part 2): a query with any of them is an InputError.
 
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -35,6 +36,12 @@ public:
     /// settings; its flow condition is replaced by each query's. `label` names the mesh in the
     /// fingerprint and messages. InputError if the setup does not fit the mesh.
     EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label);
+    /// The source of a mesh file and a `manta cfd` configuration file (empty: the defaults),
+    /// set up as `manta cfd` sets up a case (case.hpp: `read_case_mesh`, `case_setup`,
+    /// `resolve_roles`), labelled with the mesh file's name. InputError, ConfigError or IoError
+    /// naming the file.
+    [[nodiscard]] static std::unique_ptr<EulerSource> from_files(
+        const std::filesystem::path& mesh, const std::filesystem::path& config);
 
     [[nodiscard]] std::string name() const override { return "euler"; }
     [[nodiscard]] std::string fingerprint() const override { return fingerprint_; }
