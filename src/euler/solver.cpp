@@ -117,12 +117,10 @@ SteadySolver::SteadySolver(const Domain& domain, const parallel::Communicator& c
     step_.set_backoff_state(U_);
 }
 
-void SteadySolver::set_state(const NodeStates& U) {
-    if (U.cols() != U_.cols())
+void check_state(const NodeStates& U, Index n_local, Index n_owned, double gamma) {
+    if (U.cols() != n_local)
         throw InputError(
-            fmt::format("initial solution has {} nodes; the mesh has {}", U.cols(), U_.cols()));
-    const double gamma = setup().flow.gamma;
-    const Index n_owned = step_.domain().n_owned;
+            fmt::format("initial solution has {} nodes; the mesh has {}", U.cols(), n_local));
     for (Index i = 0; i < n_owned; ++i) {
         const Vec5 W = primitive(U.col(i), gamma);
         if (!(W[0] > 0.0 && W[4] > 0.0 && W.allFinite()))
@@ -131,6 +129,11 @@ void SteadySolver::set_state(const NodeStates& U) {
                 "finite values",
                 i, W[0], W[4]));
     }
+}
+
+void SteadySolver::set_state(const NodeStates& U) {
+    const Index n_owned = step_.domain().n_owned;
+    check_state(U, U_.cols(), n_owned, setup().flow.gamma);
     U_.leftCols(n_owned) = U.leftCols(n_owned);
     step_.exchange(U_);
     step_.set_backoff_state(U_);

@@ -354,6 +354,10 @@ private:
     IterationState it_;
 };
 
+/// InputError unless U has `n_local` columns and positive, finite density and pressure at every
+/// owned node (naming the first node that has not).
+void check_state(const NodeStates& U, Index n_local, Index n_owned, double gamma);
+
 /// Pressure coefficient, primitive state (node-major) and local Mach number of every column of
 /// U (shared by the steady and the dual-time solvers).
 [[nodiscard]] std::vector<double> pressure_coefficient(const NodeStates& U, const CaseSetup& s);

@@ -1,0 +1,183 @@
+/// @file test_unsteady.cpp
+/// Dual time stepping on a fixed mesh (unsteady.hpp): a uniform flow stays uniform to round-off;
+/// a converged steady solution stays steady; an entropy wave convected through the channel
+/// converges in time at first order with backward Euler and at second order with BDF2
+/// (self-convergence against a solution at an eighth of the step, the spatial discretisation
+/// the same for all); bad settings are one-line errors.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "manta/core/error.hpp"
+#include "manta/euler/config.hpp"
+#include "manta/euler/unsteady.hpp"
+#include "manta/mesh/dual.hpp"
+#include "test_meshes.hpp"
+
+namespace {
+
+using namespace manta;
+using euler::BoundaryKind;
+
+/// The subsonic bump channel at M 0.5, walls on the lower and upper boundaries.
+struct Channel {
+    mesh::Mesh mesh = test::bump_channel(0, 0.1);
+    mesh::DualMetrics dual = mesh::compute_dual_metrics(mesh);
+    parallel::SerialHalo halo;
+    parallel::SerialCommunicator comm;
+    euler::CaseSetup setup;
+    Channel() {
+        euler::CfdConfig c;
+        c.markers = {{"lower", BoundaryKind::wall}, {"upper", BoundaryKind::wall}};
+        setup.roles = euler::resolve_roles(mesh, c);
+        setup.flow.mach = 0.5;
+        setup.reference.area = 0.1;
+    }
+    [[nodiscard]] euler::Domain domain() const { return {&mesh, &dual, mesh.n_nodes(), &halo}; }
+};
+
+TEST(UnsteadySolver, UniformFlowStaysUniform) {
+    // Far field on every marker: the free stream is an exact solution of the discrete equations.
+    Channel ch;
+    for (auto& r : ch.setup.roles)
+        if (r == BoundaryKind::wall) r = BoundaryKind::farfield;  // symmetry planes stay
+    euler::UnsteadySettings t;
+    t.dt = 0.05;
+    euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, t);
+    const euler::NodeStates U0 = s.state();
+    for (int n = 0; n < 5; ++n) {
+        const euler::TimeStepRecord r = s.advance();
+        EXPECT_TRUE(r.converged) << n;
+        EXPECT_EQ(r.step, n + 1);
+    }
+    EXPECT_NEAR(s.time(), 0.25, 1e-15);
+    const double dev = (s.state() - U0).cwiseAbs().maxCoeff();
+    std::printf("uniform flow after 5 BDF2 steps: max |U - U_inf| %.2e\n", dev);
+    EXPECT_LT(dev, 1e-13);
+}
+
+TEST(UnsteadySolver, SteadySolutionStaysSteady) {
+    Channel ch;
+    ch.setup.spatial.limiter = false;
+    ch.setup.solver.residual_drop = 10;
+    euler::SteadySolver steady(ch.domain(), ch.comm, ch.setup);
+    const euler::SolveOutcome oc = steady.solve();
+    ASSERT_TRUE(oc.converged) << oc.reason;
+    euler::UnsteadySettings t;
+    t.dt = 0.1;
+    euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, t);
+    s.set_state(steady.state());
+    for (int n = 0; n < 4; ++n) (void)s.advance();
+    const double dev = (s.state() - steady.state()).cwiseAbs().maxCoeff();
+    std::printf("steady solution after 4 BDF2 steps: max |U - U_steady| %.2e, CD %.9f -> %.9f\n",
+                dev, oc.forces.CD, s.forces().CD);
+    EXPECT_LT(dev, 1e-8);
+    EXPECT_NEAR(s.forces().CL, oc.forces.CL, 1e-9);
+    EXPECT_NEAR(s.forces().CD, oc.forces.CD, 1e-9);
+}
+
+/// The converged steady channel (second order, no limiter: a smooth residual, no limiter
+/// switching in time).
+struct SteadyChannel : Channel {
+    euler::NodeStates U;
+    SteadyChannel() {
+        setup.spatial.limiter = false;
+        setup.solver.residual_drop = 10;
+        euler::SteadySolver s(domain(), comm, setup);
+        const euler::SolveOutcome oc = s.solve();
+        EXPECT_TRUE(oc.converged) << oc.reason;
+        U = s.state();
+    }
+};
+
+/// An entropy wave: the steady channel flow with a Gaussian density bump (amplitude 10 %,
+/// radius 0.2, at the local pressure and velocity) centred at x = -0.5, y = 0.4, advanced to
+/// t = 0.2 (the bump moves by about 0.1) with step dt; returns the state.
+euler::NodeStates entropy_wave(const SteadyChannel& ch, int order, double dt) {
+    euler::UnsteadySettings t;
+    t.dt = dt;
+    t.order = order;
+    t.inner_drop = 8;  // inner iterations converged far below the time error
+    t.max_inner = 100;
+    euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, t);
+    euler::NodeStates U0 = ch.U;
+    for (Eigen::Index i = 0; i < U0.cols(); ++i) {
+        const Eigen::Vector3d x = ch.mesh.node(static_cast<mesh::Index>(i));
+        const double r2 = (x.x() + 0.5) * (x.x() + 0.5) + (x.y() - 0.4) * (x.y() - 0.4);
+        euler::Vec5 W = euler::primitive(U0.col(i), 1.4);
+        W[0] *= 1.0 + 0.1 * std::exp(-r2 / 0.04);
+        U0.col(i) = euler::conservative(W, 1.4);
+    }
+    s.set_state(U0);
+    const int steps = static_cast<int>(std::lround(0.2 / dt));
+    for (int n = 0; n < steps; ++n) {
+        const euler::TimeStepRecord r = s.advance();
+        EXPECT_TRUE(r.converged) << "order " << order << " dt " << dt << " step " << r.step
+                                 << " inner " << r.inner_iterations << " drop " << r.residual_drop;
+    }
+    EXPECT_NEAR(s.time(), 0.2, 1e-12);
+    return s.state();
+}
+
+TEST(UnsteadySolver, BackwardDifferencesConvergeAtTheirOrder) {
+    const SteadyChannel ch;
+    for (const int order : {1, 2}) {
+        const double dt0 = 0.05;
+        const euler::NodeStates ref = entropy_wave(ch, order, dt0 / 8);
+        double e[3];
+        for (int k = 0; k < 3; ++k)
+            e[k] = (entropy_wave(ch, order, dt0 / (1 << k)) - ref).cwiseAbs().maxCoeff();
+        // With the reference at dt0/8, e(dt) ~ C (dt^p - (dt0/8)^p): the ratios of the
+        // differences of successive errors are free of the reference's own error.
+        const double p1 = std::log2(e[0] / e[1]), p2 = std::log2(e[1] / e[2]);
+        const double p = std::log2((e[0] - e[1]) / (e[1] - e[2]));
+        std::printf(
+            "BDF%d: max error %.3e %.3e %.3e at dt %.4g, /2, /4; orders %.2f %.2f, "
+            "from differences %.2f\n",
+            order, e[0], e[1], e[2], dt0, p1, p2, p);
+        EXPECT_NEAR(p, order, 0.2) << "BDF" << order;
+        EXPECT_GT(e[0], e[1]);
+        EXPECT_GT(e[1], e[2]);
+    }
+}
+
+TEST(UnsteadySolver, BadSettingsAreOneLineErrors) {
+    Channel ch;
+    euler::UnsteadySettings t;
+    for (const auto& [bad, key] : {std::pair{[] {
+                                                 euler::UnsteadySettings s;
+                                                 s.dt = 0;
+                                                 return s;
+                                             }(),
+                                             "dt"},
+                                   std::pair{[] {
+                                                 euler::UnsteadySettings s;
+                                                 s.dt = 1;
+                                                 s.order = 3;
+                                                 return s;
+                                             }(),
+                                             "order"}}) {
+        try {
+            euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, bad);
+            ADD_FAILURE() << key;
+        } catch (const InputError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find(key), std::string::npos) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
+    }
+    t.dt = 0.1;
+    euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, t);
+    euler::NodeStates U = s.state();
+    U(4, 7) = -1.0;
+    try {
+        s.set_state(U);
+        ADD_FAILURE() << "negative energy accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("node 7"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
