@@ -98,6 +98,17 @@ void PseudoTimeStep::begin(IterationState& it) {
     if (!(it.cfl_cap > 0.0)) it.cfl_cap = setup_.solver.cfl_max;
 }
 
+void PseudoTimeStep::update_geometry() {
+    op_.update_geometry();
+    if (op_first_) op_first_->update_geometry();
+}
+
+void PseudoTimeStep::set_grid_fluxes(const mesh::DualFaceValues* g,
+                                     const Eigen::Matrix3Xd* node_velocities) {
+    op_.set_grid_fluxes(g, node_velocities);
+    if (op_first_) op_first_->set_grid_fluxes(g, node_velocities);
+}
+
 void PseudoTimeStep::exchange(NodeStates& U) const {
     domain_.halo->exchange(std::span<double>(U.data(), static_cast<std::size_t>(U.size())), 5);
 }

@@ -229,6 +229,15 @@ public:
     StepOutcome step(NodeStates& U, IterationState& it, const StopRule& stop,
                      const StepTerms& terms = {});
 
+    /// Moving meshes (spatial.hpp): after Mesh::set_coordinates and mesh::update_dual_metrics of
+    /// the domain's mesh and metrics, refresh the operators' cached geometry. The reference area
+    /// and the round-off level stay those of the construction.
+    void update_geometry();
+    /// Moving meshes: the grid fluxes of every dual face for the operators
+    /// (`SpatialOperator::set_grid_fluxes`; null: a fixed mesh, bit for bit).
+    void set_grid_fluxes(const mesh::DualFaceValues* g,
+                         const Eigen::Matrix3Xd* node_velocities = nullptr);
+
     /// Wall forces of U.
     [[nodiscard]] ForceCoefficients forces(const NodeStates& U) const;
     /// The reference area used (the configured one, or the projected wall area).
