@@ -218,6 +218,9 @@ ManoeuvreSpec read(const ConfigNode& root) {
                 p.numbers("body_rate_max_deg_s", 3, NumberSpec::range(0.1, 1000.0, "deg/s"));
             for (int i = 0; i < 3; ++i) s.body_rate_max[i] = r[i] * kDeg;
         }
+        const std::string dir =
+            p.choice_or("roll_direction", "either", {"either", "left", "right"});
+        s.roll_direction = dir == "left" ? -1 : dir == "right" ? 1 : 0;
         s.throttle_rate =
             p.number_or("throttle_rate", s.throttle_rate, NumberSpec::range(1e-3, 100.0, "1/s"));
         p.finish();
@@ -241,6 +244,7 @@ ManoeuvreSpec read(const ConfigNode& root) {
             static_cast<int>(me.integer_or("segments", s.segments, NumberSpec::range(1, 50, "-")));
         s.coarse_nodes = static_cast<int>(
             me.integer_or("coarse_nodes", s.coarse_nodes, NumberSpec::range(0, 300, "-")));
+        s.tie_breaks = me.choice_or("breaks", "junction", {"junction", "free"}) == "junction";
         me.finish();
     }
 

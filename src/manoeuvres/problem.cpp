@@ -134,6 +134,16 @@ ManoeuvreProblem::ManoeuvreProblem(flightdyn::FlightModel model, ManoeuvreSpec s
                 {"q_rad_s", -spec_.body_rate_max[1], spec_.body_rate_max[1], 1.0},
                 {"r_rad_s", -spec_.body_rate_max[2], spec_.body_rate_max[2], 1.0},
                 {"roll_rad", -30.0, 30.0, 1.0}};
+    // a one-way roll (path.roll_direction): the body roll rate keeps its sign at every node
+    if (spec_.roll_direction < 0) p.states[Q::p].upper = 0.0;
+    if (spec_.roll_direction > 0) p.states[Q::p].lower = 0.0;
+    if (spec_.roll_direction != 0 &&
+        !(x0_[Q::p] >= p.states[Q::p].lower && x0_[Q::p] <= p.states[Q::p].upper)) {
+        throw InputError(fmt::format(
+            "{}: path.roll_direction {}: the entry roll rate p is {} deg/s; expected {} 0",
+            spec_.file.string(), spec_.roll_direction < 0 ? "left" : "right", x0_[Q::p] / kDeg,
+            spec_.roll_direction < 0 ? "at most" : "at least"));
+    }
     const double elo = spec_.east_range[0], ehi = spec_.east_range[1];
     p.states[Q::y] = {"y_m", elo, ehi, 1000.0};
     const auto& lim = model_.limits;
@@ -363,6 +373,7 @@ optimal::Mesh manoeuvre_mesh(const ManoeuvreSpec& spec, int nodes, double juncti
                       : junction_fraction + (1.0 - junction_fraction) * (k - half) / half;
     }
     m.free_breaks = true;
+    if (spec.tie_breaks) m.phase_breaks = {half};
     m.min_segment_fraction = std::min(0.02, 0.5 / spec.segments);
     return m;
 }

@@ -105,6 +105,14 @@ void Mesh::validate() const {
                                          breaks[k], breaks[k - 1]));
         }
     }
+    for (std::size_t i = 0; i < phase_breaks.size(); ++i) {
+        const int k = phase_breaks[i];
+        if (k < 1 || k >= static_cast<int>(nodes.size()) || (i > 0 && k <= phase_breaks[i - 1])) {
+            throw InputError(fmt::format(
+                "mesh: phase break {} of {} segments, expected increasing indices 1 to {}", k,
+                nodes.size(), nodes.size() - 1));
+        }
+    }
     if (!(min_segment_fraction > 0.0) ||
         min_segment_fraction * static_cast<double>(nodes.size()) >= 1.0) {
         throw InputError(fmt::format("mesh: min_segment_fraction {}, expected in (0, 1/K)",

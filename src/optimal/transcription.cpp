@@ -106,6 +106,22 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
     }
     order_row_ = row;
     row += (free && K > 2) ? K - 2 : 0;
+    tie_row_ = row;
+    if (free && !mesh_.phase_breaks.empty()) {
+        std::vector<int> anchors{0};
+        anchors.insert(anchors.end(), mesh_.phase_breaks.begin(), mesh_.phase_breaks.end());
+        anchors.push_back(K);
+        for (std::size_t i = 0; i + 1 < anchors.size(); ++i) {
+            const int a = anchors[i], c = anchors[i + 1];
+            const double ba = mesh_.breaks[static_cast<std::size_t>(a)];
+            const double bc = mesh_.breaks[static_cast<std::size_t>(c)];
+            for (int k = a + 1; k < c; ++k) {
+                ties_.push_back(
+                    {k, a, c, (mesh_.breaks[static_cast<std::size_t>(k)] - ba) / (bc - ba), 0});
+            }
+        }
+        row += static_cast<int>(ties_.size());
+    }
     n_rows_ = row;
 
     n_node_out_ = model.n_node_outputs();
@@ -168,6 +184,15 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
         jac_col_.push_back(break_col(m + 1));
         jac_row_.push_back(order_row_ + m);
         jac_col_.push_back(break_col(m + 2));
+    }
+    for (std::size_t i = 0; i < ties_.size(); ++i) {
+        Tie& t = ties_[i];
+        t.jac_start = static_cast<int>(jac_row_.size());
+        for (const int b : {t.k, t.a, t.c}) {
+            if (b <= 0 || b >= K) continue;
+            jac_row_.push_back(tie_row_ + static_cast<int>(i));
+            jac_col_.push_back(break_col(b));
+        }
     }
 
     // Hessian structure (lower triangle), union of the node and boundary blocks.
@@ -399,10 +424,11 @@ void Transcription::bounds(double* x_l, double* x_u, double* g_l, double* g_u) c
             g_u[jn.first_row + e] = to_nlp(c.upper);
         }
     }
-    for (int r = order_row_; r < n_rows_; ++r) {
+    for (int r = order_row_; r < tie_row_; ++r) {
         g_l[r] = mesh_.min_segment_fraction;
         g_u[r] = kNlpInf;
     }
+    for (int r = tie_row_; r < n_rows_; ++r) g_l[r] = g_u[r] = 0.0;
 }
 
 void Transcription::initial_point(const Guess& guess, double* z) const {
@@ -569,8 +595,14 @@ void Transcription::constraints(const double* z, double* g) {
     for (const auto& jn : junctions_) {
         for (int e = 0; e < jn.n; ++e) g[jn.first_row + e] = jn.out[e];
     }
-    for (int m = 0; order_row_ + m < n_rows_; ++m) {
+    for (int m = 0; order_row_ + m < tie_row_; ++m) {
         g[order_row_ + m] = z[break_col(m + 2)] - z[break_col(m + 1)];
+    }
+    const int K = n_segments();
+    const auto brk = [&](int b) { return b == 0 ? 0.0 : b == K ? 1.0 : z[break_col(b)]; };
+    for (std::size_t i = 0; i < ties_.size(); ++i) {
+        const Tie& t = ties_[i];
+        g[tie_row_ + static_cast<int>(i)] = brk(t.k) - (1.0 - t.w) * brk(t.a) - t.w * brk(t.c);
     }
 }
 
@@ -615,9 +647,16 @@ void Transcription::jacobian(const double* z, double* values) {
             }
         }
     }
-    for (int m = 0; order_row_ + m < n_rows_; ++m) {
+    for (int m = 0; order_row_ + m < tie_row_; ++m) {
         values[order_jac_start_ + 2 * m] = -1.0;
         values[order_jac_start_ + 2 * m + 1] = 1.0;
+    }
+    const int K = n_segments();
+    for (const Tie& t : ties_) {
+        int idx = t.jac_start;
+        values[idx++] = 1.0;  // b_k is interior
+        if (t.a > 0) values[idx++] = -(1.0 - t.w);
+        if (t.c < K) values[idx++] = -t.w;
     }
 }
 
@@ -795,7 +834,7 @@ void Transcription::extract(const double* z, const double* lambda, int n_report,
             }
         } else {
             v.kind = "mesh";
-            v.name = "segment order";
+            v.name = row < tie_row_ ? "segment order" : "segment tie";
         }
         sol.max_violation = std::max(sol.max_violation, v.amount);
         sol.max_scaled_violation = std::max(sol.max_scaled_violation, v.scaled);

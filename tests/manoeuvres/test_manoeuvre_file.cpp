@@ -96,6 +96,24 @@ path: {mach_max: 0.44, bank_deg: [-10, 90]}
     EXPECT_NEAR((*s.bank_range)[1], 90.0 * kDeg, 1e-15);
 }
 
+TEST(ManoeuvreFile, RollDirection) {
+    // a one-way roll (path.roll_direction): either way by default, left p <= 0, right p >= 0
+    const ManoeuvreSpec d = parse_manoeuvre("name: t\nentry: {speed: 100, altitude: 1000}\n", "d");
+    EXPECT_EQ(d.roll_direction, 0);
+    const auto dir = [](const std::string& v) {
+        return parse_manoeuvre(
+                   "name: t\nentry: {speed: 100, altitude: 1000}\npath: {roll_direction: " + v +
+                       "}\n",
+                   "inline")
+            .roll_direction;
+    };
+    EXPECT_EQ(dir("left"), -1);
+    EXPECT_EQ(dir("right"), 1);
+    EXPECT_EQ(dir("either"), 0);
+    // the Barrel Roll of the paper rolls to the left through a full turn (sec. V)
+    EXPECT_EQ(load_manoeuvre(kDir / "barrel_roll.yaml").roll_direction, -1);
+}
+
 /// The message of the ConfigError/InputError thrown by parsing `text`.
 std::string error_of(const std::string& text) {
     try {
@@ -141,6 +159,19 @@ TEST(ManoeuvreFile, Errors) {
     const std::string bank =
         error_of("name: x\nentry: {speed: 100, altitude: 1000}\npath: {bank_deg: [0, 180]}\n");
     EXPECT_NE(bank.find("bank_deg"), std::string::npos) << bank;
+    // a roll direction that is not left, right or either: one line naming the key and value
+    for (const char* v : {"up", "-1", "[left, right]", "''"}) {
+        const std::string dir = error_of(
+            std::string("name: x\nentry: {speed: 100, altitude: 1000}\npath: {roll_direction: ") +
+            v + "}\n");
+        EXPECT_NE(dir.find("roll_direction"), std::string::npos) << v << ": " << dir;
+        EXPECT_NE(dir.find("bad.yaml"), std::string::npos) << v << ": " << dir;
+        EXPECT_EQ(dir.find('\n'), std::string::npos) << v << ": " << dir;
+    }
+    const std::string dir_value = error_of(
+        "name: x\nentry: {speed: 100, altitude: 1000}\npath: {roll_direction: clockwise}\n");
+    EXPECT_NE(dir_value.find("clockwise"), std::string::npos) << dir_value;
+    EXPECT_NE(dir_value.find("left"), std::string::npos) << dir_value;
 }
 
 }  // namespace

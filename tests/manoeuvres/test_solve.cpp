@@ -11,9 +11,11 @@
 #include <numbers>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "manta/aircraft/aircraft.hpp"
+#include "manta/core/error.hpp"
 #include "manta/manoeuvres/manoeuvre.hpp"
 #include "manta/manoeuvres/problem.hpp"
 
@@ -148,6 +150,102 @@ TEST(ManoeuvreSolve, LevelTurnConverges) {
     std::getline(in, line);
     EXPECT_NE(line.find(",0,"), std::string::npos) << "phase written as an integer: " << line;
     std::filesystem::remove_all(dir);
+}
+
+/// A full aileron roll to the left (not from the paper): level entry at 150 m/s, 3 000 m;
+/// an accumulated body roll of -360 deg, wings level at the exit; a slow roll rate limit.
+constexpr const char* kAileronRoll = R"(
+name: aileron_roll
+entry: {speed: 150.0, altitude: 3000.0}
+final:
+  roll_angle_deg: -360
+  bank_deg: 0
+  heading_change_deg: [-20, 20]
+  altitude: {entry_offset: [-300, 300]}
+path:
+  body_rate_max_deg_s: [60, 60, 60]
+  roll_direction: left
+mesh: {nodes: 20, coarse_nodes: 0}
+guess:
+  duration: 8.0
+  duration_bounds: [1.0, 60.0]
+  waypoints:
+    - {fraction: 0.25, bank_deg: -90}
+    - {fraction: 0.5, bank_deg: -180}
+    - {fraction: 0.75, bank_deg: -270}
+    - {fraction: 1.0, bank_deg: -360}
+)";
+
+TEST(ManoeuvreSolve, RollDirectionRollsOneWay) {
+    // path.roll_direction: left bounds the body roll rate to p <= 0 at every node, so the
+    // accumulated roll angle falls monotonically to its final -360 deg
+    const auto aircraft = aircraft::load_aircraft(kDir / "aircraft.yaml");
+    const ManoeuvreSpec spec = parse_manoeuvre(kAileronRoll, "aileron_roll.yaml");
+    ASSERT_EQ(spec.roll_direction, -1);
+    const ManoeuvreProblem problem(manoeuvre_model(aircraft, spec), spec);
+    EXPECT_EQ(problem.info().states[flightdyn::quat::p].upper, 0.0);
+    EXPECT_LT(problem.info().states[flightdyn::quat::p].lower, 0.0);
+    optimal::SolverOptions o;
+    o.tolerance = spec.tolerance;
+    o.print_level = 0;
+    const optimal::Solution s = fly(problem, o).solution;
+    ASSERT_TRUE(s.converged()) << s.status_text;
+    const Trajectory t = trajectory(problem, s);
+    const auto p = t.column("p");
+    const auto roll = t.column("roll_angle");
+    constexpr double kTol = 1e-6;  // IPOPT's bound relaxation (bound_relax_factor 1e-8)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        EXPECT_LE(p[i], kTol) << "node " << i;
+        if (i > 0) EXPECT_LE(roll[i], roll[i - 1] + kTol) << "node " << i;
+    }
+    EXPECT_NEAR(roll.back(), -2.0 * std::numbers::pi, 1e-6);
+    // between the nodes too: the dense samples of the Lagrange polynomials
+    const auto rd = dense_trajectory(problem, s, 0.02).column("roll_angle");
+    for (std::size_t i = 1; i < rd.size(); ++i) {
+        EXPECT_LE(rd[i], rd[i - 1] + 1e-4) << "sample " << i;
+    }
+    const ConstraintCheck c = check(problem, t);
+    EXPECT_NEAR(c.final_bank_deg, 0.0, 1e-3);
+    // the same roll to the right is the mirror image: p >= 0 and an accumulated +360 deg
+    std::string right = kAileronRoll;
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+             {"roll_angle_deg: -360", "roll_angle_deg: 360"},
+             {"roll_direction: left", "roll_direction: right"},
+             {"bank_deg: -90", "bank_deg: 90"},
+             {"bank_deg: -180", "bank_deg: 180"},
+             {"bank_deg: -270", "bank_deg: 270"},
+             {"bank_deg: -360", "bank_deg: 360"}}) {
+        right.replace(right.find(from), from.size(), to);
+    }
+    const ManoeuvreSpec rs = parse_manoeuvre(right, "aileron_roll_right.yaml");
+    const ManoeuvreProblem rp(manoeuvre_model(aircraft, rs), rs);
+    const optimal::Solution sr = fly(rp, o).solution;
+    ASSERT_TRUE(sr.converged()) << sr.status_text;
+    const Trajectory tr = trajectory(rp, sr);
+    for (double v : tr.column("p")) EXPECT_GE(v, -kTol);
+    EXPECT_NEAR(tr.column("roll_angle").back(), 2.0 * std::numbers::pi, 1e-6);
+    EXPECT_NEAR(sr.final_time, s.final_time, 0.05 * s.final_time);
+}
+
+TEST(ManoeuvreSolve, RollDirectionAgainstTheEntryRollRate) {
+    // a given entry already rolling right cannot be held to a roll to the left: one line
+    const auto aircraft = aircraft::load_aircraft(kDir / "aircraft.yaml");
+    std::string text = kAileronRoll;
+    const std::string entry = "entry: {speed: 150.0, altitude: 3000.0}";
+    text.replace(text.find(entry), entry.size(),
+                 "entry: {speed: 150.0, altitude: 3000.0, condition: given, alpha_deg: 2, "
+                 "p_deg: 10}");
+    const ManoeuvreSpec spec = parse_manoeuvre(text, "rolling.yaml");
+    try {
+        const ManoeuvreProblem problem(manoeuvre_model(aircraft, spec), spec);
+        FAIL() << "accepted";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("rolling.yaml"), std::string::npos) << m;
+        EXPECT_NE(m.find("roll_direction"), std::string::npos) << m;
+        EXPECT_NE(m.find("10"), std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
 }
 
 TEST(ManoeuvreSolve, TablesOverrideTheAircraftsAeroModel) {

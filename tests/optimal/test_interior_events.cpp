@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "manta/core/error.hpp"
@@ -117,6 +118,46 @@ TEST(InteriorEvents, ThereAndBackHitsTheAnalyticOptimum) {
         EXPECT_NEAR(s.state(s.breaks[2])(0), target, 1e-7);
         EXPECT_NEAR(s.state(s.breaks[2])(1), 0.0, 1e-5) << "at rest at the turn";
         EXPECT_LT(s.max_violation, 1e-7);
+    }
+}
+
+TEST(InteriorEvents, PhaseBreaksTieTheOtherBreaks) {
+    // Mesh::phase_breaks: only the turn (break 2 of 4) is free; breaks 1 and 3 stay halfway
+    // through their leg, where the bang-bang switches of this problem lie (t_f / 4, 3 t_f / 4)
+    for (const double target : {1.0, 2.25}) {
+        ThereAndBack p;
+        p.target = target;
+        const auto m = make_model(p);
+        Mesh mesh = Mesh::uniform(4, 8);
+        mesh.free_breaks = true;
+        mesh.phase_breaks = {2};
+        mesh.breaks = {0.0, 0.3, 0.6, 0.8, 1.0};  // the turn starts off its optimum
+        const DerivativeCheck d = check_derivatives(*m, mesh, p.guess(5.0));
+        EXPECT_LT(d.jacobian_error, 1e-6) << "row " << d.worst_row << " col " << d.worst_col;
+        const Solution s = solve(*m, mesh, p.guess(5.0));
+        ASSERT_TRUE(s.converged()) << s.status_text;
+        const double tf = 4.0 * std::sqrt(target);
+        EXPECT_NEAR(s.final_time, tf, 1e-6) << target;
+        EXPECT_NEAR(s.breaks[2], 0.5 * tf, 1e-5) << "event time";
+        // the tied breaks keep their fraction (0.5) of each leg
+        EXPECT_NEAR(s.breaks[1], 0.5 * s.breaks[2], 1e-9);
+        EXPECT_NEAR(s.breaks[3], 0.5 * (s.breaks[2] + s.final_time), 1e-9);
+        EXPECT_LT(s.max_violation, 1e-7);
+    }
+    // an index outside 1..K-1 or out of order is an input error naming it
+    ThereAndBack p;
+    const auto m = make_model(p);
+    for (const std::vector<int>& bad :
+         {std::vector<int>{0}, std::vector<int>{4}, std::vector<int>{3, 1}}) {
+        Mesh mesh = Mesh::uniform(4, 6);
+        mesh.free_breaks = true;
+        mesh.phase_breaks = bad;
+        try {
+            (void)solve(*m, mesh, p.guess(4.0));
+            ADD_FAILURE() << "accepted phase break " << bad.front();
+        } catch (const manta::InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("phase break"), std::string::npos) << e.what();
+        }
     }
 }
 

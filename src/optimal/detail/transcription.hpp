@@ -97,6 +97,15 @@ private:
     int u0_ = 0, p0_ = 0, t0_ = 0, b0_ = 0;
     int n_vars_ = 0;
     int path_row_ = 0, event_row_ = 0, interior_row_ = 0, order_row_ = 0, n_rows_ = 0;
+    /// A break tied to its neighbouring free breaks a and c (0 and K: the ends, fixed):
+    /// b_k = (1 - w) b_a + w b_c (Mesh::phase_breaks).
+    struct Tie {
+        int k = 0, a = 0, c = 0;
+        double w = 0.0;
+        int jac_start = 0;
+    };
+    std::vector<Tie> ties_;
+    int tie_row_ = 0;
     int ni_ = 0;  // interior events
 
     /// The interior events of one mesh junction.

@@ -101,6 +101,9 @@ struct ManoeuvreSpec {
     double control_rate = 1.0471975511965976;     ///< |deflection rate| limit [rad/s] (60 deg/s)
     double throttle_rate = 0.5;                   ///< |throttle rate| limit [1/s]
     std::array<double, 3> body_rate_max{5.0, 3.0, 3.0};  ///< |p|, |q|, |r| limits [rad/s]
+    /// Sign of the body roll rate p at every node (`path.roll_direction`): 0 either way, -1 to
+    /// the left only (p <= 0, a barrel roll to the left), +1 to the right only (p >= 0).
+    int roll_direction = 0;
 
     // --- mass -------------------------------------------------------------------------------
     std::string mass_case;                  ///< aircraft mass case ("" = the default)
@@ -108,9 +111,13 @@ struct ManoeuvreSpec {
     std::optional<double> cg_mac_fraction;  ///< override, fraction of the MAC
 
     // --- mesh, cost, solver ----------------------------------------------------------------
-    int nodes = 40;                     ///< LGL points per segment
-    int segments = 1;                   ///< hp segments
-    int coarse_nodes = 20;              ///< points per segment of a first coarse solve (0: none)
+    int nodes = 40;         ///< LGL points per segment
+    int segments = 1;       ///< hp segments
+    int coarse_nodes = 20;  ///< points per segment of a first coarse solve (0: none)
+    /// With an intermediate condition: only the junction of the phases is a free break, the
+    /// segments of each phase share its length equally (`mesh.breaks: junction`); false: every
+    /// interior break is free (`mesh.breaks: free`).
+    bool tie_breaks = true;
     std::string cost = "minimum_time";  ///< minimum_time (only form)
     /// Weight [s] of the integral of the squared control rates, each over its limit, added to tf.
     double rate_weight = 0.01;

@@ -26,6 +26,11 @@ struct Mesh {
     std::vector<double> breaks;  ///< K+1 fractions of [t0, tf]: 0 = b_0 < ... < b_K = 1
     bool free_breaks = false;    ///< interior breaks are decision variables (start at `breaks`)
     double min_segment_fraction = 1e-3;  ///< least segment length (fraction) with free breaks
+    /// With free breaks: when not empty, only these interior breaks (indices 1..K-1, increasing)
+    /// move freely (the junctions of phases); every other interior break keeps its fraction of
+    /// the interval between its neighbouring free breaks or ends, so the segments of a phase
+    /// stretch together and none can shrink or grow alone.
+    std::vector<int> phase_breaks;
 
     /// K equal segments of n points each.
     [[nodiscard]] static Mesh uniform(int segments, int nodes_per_segment);
