@@ -391,13 +391,24 @@ ManoeuvreResult fly(const ManoeuvreProblem& problem, const optimal::SolverOption
     double cpu = 0.0, wall = 0.0;
     int its = 0;
     if (spec.coarse_nodes > 0 && spec.coarse_nodes < n) {
-        // continuation: the same problem on a coarse mesh, its solution as the guess
+        // continuation: the same problem on a coarse mesh, its solution as the guess; a one-way
+        // roll (path.roll_direction) is left out there: on 10 points per segment the sign
+        // bound on p stalls IPOPT from the waypoint guess, the full mesh then imposes it
+        std::unique_ptr<ManoeuvreProblem> two_way;
+        std::unique_ptr<optimal::Model> coarse_model;
+        if (spec.roll_direction != 0) {
+            ManoeuvreSpec s = spec;
+            s.roll_direction = 0;
+            two_way = std::make_unique<ManoeuvreProblem>(problem.model(), std::move(s));
+            coarse_model = make_model(*two_way);
+        }
         optimal::SolverOptions coarse = options;
         coarse.resimulate = false;
         coarse.tolerance = std::max(options.tolerance, 1e-5);
         coarse.failure_csv.clear();
-        const optimal::Solution c = optimal::solve(
-            *model, manoeuvre_mesh(spec, spec.coarse_nodes, junction), guess, coarse);
+        const optimal::Solution c =
+            optimal::solve(coarse_model ? *coarse_model : *model,
+                           manoeuvre_mesh(spec, spec.coarse_nodes, junction), guess, coarse);
         r.coarse_iterations = c.iterations;
         cpu = c.cpu_time;
         wall = c.wall_time;

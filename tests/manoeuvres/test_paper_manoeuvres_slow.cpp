@@ -144,6 +144,16 @@ TEST(PaperManoeuvres, BarrelRoll) {
     const double roll = f.trajectory.column("roll_angle").back() / kDeg;
     EXPECT_LE(roll, -340.0 + 1e-2);
     EXPECT_GE(roll, -380.0 - 1e-2);
+    // one way (path.roll_direction: left): p <= 0 at every node, the accumulated roll never
+    // turns back (the file before it rolled -461 deg left and +121 deg right)
+    const auto p = f.trajectory.column("p");
+    const auto acc = f.trajectory.column("roll_angle");
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        EXPECT_LE(p[i], 1e-6) << "node " << i;
+        if (i > 0) {
+            EXPECT_LE(acc[i], acc[i - 1] + 1e-6) << "node " << i;
+        }
+    }
     const std::size_t j = junction(f);
     EXPECT_NEAR(std::abs(f.trajectory.column("phi")[j] / kDeg), 180.0, 1e-2);  // inverted
     EXPECT_GE(f.trajectory.column("altitude")[j],
