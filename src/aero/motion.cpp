@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/core/utf8.hpp"
 
@@ -360,17 +361,6 @@ SlopeStencil slope_stencil(const std::vector<double>& t, std::size_t i) {
 
 }  // namespace
 
-// ---------------------------------------------------------------- kinematics
-
-std::array<double, 3> body_rates_from_euler(const std::array<double, 3>& euler,
-                                            const std::array<double, 3>& euler_rates) {
-    const double sphi = std::sin(euler[0]), cphi = std::cos(euler[0]);
-    const double sth = std::sin(euler[1]), cth = std::cos(euler[1]);
-    const double phi_dot = euler_rates[0], theta_dot = euler_rates[1], psi_dot = euler_rates[2];
-    return {phi_dot - psi_dot * sth, theta_dot * cphi + psi_dot * sphi * cth,
-            psi_dot * cphi * cth - theta_dot * sphi};
-}
-
 // ---------------------------------------------------------------- Motion
 
 int Motion::find_mode(std::string_view name) const {
@@ -449,7 +439,7 @@ MotionState Motion::at(double time, double clamp_tolerance) const {
     s.modes.resize(modes.size());
     s.mode_rates.resize(modes.size());
     for (std::size_t k = 0; k < modes.size(); ++k) eval(modes[k], s.modes[k], s.mode_rates[k]);
-    s.omega_body = body_rates_from_euler(s.euler, s.euler_rates);
+    s.omega_body = core::body_rates_from_euler_rates(s.euler, s.euler_rates);
     return s;
 }
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "manta/core/frames.hpp"
+
 namespace manta::cli {
 
 namespace {
@@ -346,13 +348,12 @@ std::string svg_flight_path_3d(const std::string& title, const FlightPath3d& fp)
     for (int k = 0; k < g; ++k) {
         const std::size_t i = static_cast<std::size_t>(
             std::lround(static_cast<double>(k) * static_cast<double>(n - 1) / (g - 1)));
-        const double cph = std::cos(fp.phi[i]), sph = std::sin(fp.phi[i]);
-        const double cth = std::cos(fp.theta[i]), sth = std::sin(fp.theta[i]);
-        const double cps = std::cos(fp.psi[i]), sps = std::sin(fp.psi[i]);
-        // columns of the body-to-earth rotation (north, east, down components)
-        const World nose{cth * sps, cth * cps, -(-sth)};
-        const World wing{sph * sth * sps + cph * cps, sph * sth * cps - cph * sps, -(sph * cth)};
-        const World top{-(cph * sth * sps - sph * cps), -(cph * sth * cps + sph * sps), cph * cth};
+        // columns of the body-to-earth rotation (north, east, down components) as (east, north,
+        // up): body x (nose), body y (right wing) and -z (fin up)
+        const Eigen::Matrix3d C = core::dcm_earth_from_body(fp.phi[i], fp.theta[i], fp.psi[i]);
+        const World nose{C(1, 0), C(0, 0), -C(2, 0)};
+        const World wing{C(1, 1), C(0, 1), -C(2, 1)};
+        const World top{-C(1, 2), -C(0, 2), C(2, 2)};
         const World c{fp.east[i], fp.north[i], fp.altitude[i]};
         auto at = [&](double fx, double fy, double fz) {
             return World{c.e + size * (fx * nose.e + fy * wing.e + fz * top.e),

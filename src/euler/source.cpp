@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/version.hpp"
 #include "manta/euler/case.hpp"
 #include "manta/euler/output.hpp"
@@ -119,12 +120,14 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
     }
     const ForceCoefficients& f = oc.forces;
     aero::SourceResult r;
-    r.body.CX = -f.CFx;
-    r.body.CY = f.CFy;
-    r.body.CZ = -f.CFz;
-    r.body.Cl = f.Cl();
-    r.body.Cm = f.Cm();
-    r.body.Cn = f.Cn();
+    const Eigen::Vector3d F = core::body_from_geometry(Eigen::Vector3d(f.CFx, f.CFy, f.CFz));
+    const Eigen::Vector3d M = core::body_from_geometry(Eigen::Vector3d(f.CMx, f.CMy, f.CMz));
+    r.body.CX = F.x();
+    r.body.CY = F.y();
+    r.body.CZ = F.z();
+    r.body.Cl = M.x();
+    r.body.Cm = M.y();
+    r.body.Cn = M.z();
     r.wind.CL = f.CL;
     r.wind.CD = f.CD;
     r.wind.CY = f.CY;

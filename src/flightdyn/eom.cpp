@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 
 namespace manta::flightdyn {
 
@@ -151,10 +152,11 @@ QuatState<double> to_quaternion_state(const EulerState<double>& s) {
     out[quat::y] = s[euler::y];
     out[quat::z] = s[euler::z];
     out.segment<4>(quat::q0) = quaternion_from_euler(s[euler::phi], s[euler::theta], s[euler::psi]);
-    const double V = s[euler::V], a = s[euler::alpha], b = s[euler::beta];
-    out[quat::u] = V * std::cos(a) * std::cos(b);
-    out[quat::v] = V * std::sin(b);
-    out[quat::w] = V * std::sin(a) * std::cos(b);
+    const Eigen::Vector3d uvw =
+        core::air_velocity_body(s[euler::V], s[euler::alpha], s[euler::beta]);
+    out[quat::u] = uvw.x();
+    out[quat::v] = uvw.y();
+    out[quat::w] = uvw.z();
     out[quat::p] = s[euler::p];
     out[quat::q] = s[euler::q];
     out[quat::r] = s[euler::r];

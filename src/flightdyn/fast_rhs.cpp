@@ -16,6 +16,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/core/fastmath.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
 #include "manta/flightdyn/eom.hpp"
 
@@ -117,11 +118,11 @@ bool make_params(const FlightModel& m, RhsParams& p, Eigen::Matrix3d& inverse) {
     p.area = m.reference.area;
     p.span = m.reference.span;
     p.chord = m.reference.chord;
-    // body_from_geom(moment reference point - CG): x and z change sign.
-    const Eigen::Vector3d& cg = m.mass.cg_geom;
-    p.r_mrp[0] = -(m.moment_reference_geom.x() - cg.x());
-    p.r_mrp[1] = m.moment_reference_geom.y() - cg.y();
-    p.r_mrp[2] = -(m.moment_reference_geom.z() - cg.z());
+    const Eigen::Vector3d r_mrp =
+        core::body_from_geometry(m.moment_reference_geom - m.mass.cg_geom);
+    p.r_mrp[0] = r_mrp.x();
+    p.r_mrp[1] = r_mrp.y();
+    p.r_mrp[2] = r_mrp.z();
     p.thrust_sl = m.engine.static_thrust_sl;
     p.density_exponent = m.engine.density_exponent;
     p.mach_a1 = m.engine.mach_a1;
@@ -135,9 +136,11 @@ bool make_params(const FlightModel& m, RhsParams& p, Eigen::Matrix3d& inverse) {
     p.has_engine_arm = m.engine.has_position ? 1 : 0;
     if (m.engine.has_position) {
         const auto& e = m.engine.position;
-        p.r_engine[0] = -(e[0] - cg.x());
-        p.r_engine[1] = e[1] - cg.y();
-        p.r_engine[2] = -(e[2] - cg.z());
+        const Eigen::Vector3d r_engine =
+            core::body_from_geometry(Eigen::Vector3d(e[0], e[1], e[2]) - m.mass.cg_geom);
+        p.r_engine[0] = r_engine.x();
+        p.r_engine[1] = r_engine.y();
+        p.r_engine[2] = r_engine.z();
     }
     p.alpha_dot_terms = m.alpha_dot_terms ? 1 : 0;
     p.beta_dot_terms = m.beta_dot_terms ? 1 : 0;

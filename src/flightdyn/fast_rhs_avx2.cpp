@@ -2,8 +2,9 @@
 /// The fused right-hand side (fast_rhs_impl.inc) for AVX2 with FMA. CMake compiles this unit
 /// alone with -mavx2 -mfma on x86-64 (src/flightdyn/CMakeLists.txt); it is used only on a
 /// processor that has both (fast_rhs.cpp). It includes no header that defines inline code
-/// shared with the rest of the program except core/fastmath.hpp, whose namespace is renamed
-/// here, so the linker cannot pick an AVX2 copy of any function for other callers.
+/// shared with the rest of the program except core/fastmath.hpp and core/frames_scalar.hpp,
+/// whose namespace is renamed here, so the linker cannot pick an AVX2 copy of any function for
+/// other callers.
 
 #include "fast_rhs.hpp"
 
@@ -17,6 +18,7 @@
 
 #define manta manta_flightdyn_avx2
 #include "manta/core/fastmath.hpp"
+#include "manta/core/frames_scalar.hpp"
 #undef manta
 
 namespace manta::flightdyn::detail::avx2 {

@@ -353,30 +353,6 @@ const std::vector<std::string>& trajectory_columns() {
     return c;
 }
 
-// ------------------------------------------------------------------------------- attitude
-
-Eigen::Matrix3d dcm_earth_from_body(double phi, double theta, double psi) {
-    const double sf = std::sin(phi), cf = std::cos(phi);
-    const double st = std::sin(theta), ct = std::cos(theta);
-    const double sp = std::sin(psi), cp = std::cos(psi);
-    Eigen::Matrix3d c;
-    c << ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp,  //
-        ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp,   //
-        -st, sf * ct, cf * ct;
-    return c;
-}
-
-Eigen::Matrix3d dcm_earth_from_body(const Eigen::Vector4d& qin) {
-    const Eigen::Vector4d q = qin / qin.norm();
-    const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
-    Eigen::Matrix3d c;
-    c << q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3),
-        2 * (q1 * q3 + q0 * q2),                                                                  //
-        2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1),  //
-        2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
-    return c;
-}
-
 // ------------------------------------------------------------------------------- driver
 //
 // Three layers, shared by `simulate` and `simulate_ensemble`:

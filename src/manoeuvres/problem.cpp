@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/flightdyn/trim.hpp"
 #include "manta/optimal/model.hpp"
@@ -41,16 +42,6 @@ Eigen::Vector4d quat_mul(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
             a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
             a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
             a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
-}
-
-/// Rotation body-to-earth of a unit quaternion (q0 scalar).
-Eigen::Matrix3d dcm(const Eigen::Vector4d& q) {
-    const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
-    Eigen::Matrix3d c;
-    c << q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2),
-        2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1),
-        2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
-    return c;
 }
 
 }  // namespace
@@ -336,10 +327,10 @@ optimal::Guess ManoeuvreProblem::guess() const {
         const Eigen::Vector3d vb(speed[k] * std::cos(alpha0), 0.0, speed[k] * std::sin(alpha0));
         if (k > 0) {
             const double dt = time[k] - time[k - 1];
-            const Eigen::Vector3d vprev =
-                dcm(qs[k - 1]) * Eigen::Vector3d(speed[k - 1] * std::cos(alpha0), 0.0,
-                                                 speed[k - 1] * std::sin(alpha0));
-            pos += 0.5 * dt * (vprev + dcm(qs[k]) * vb);
+            const Eigen::Vector3d vprev = core::dcm_earth_from_unit_quaternion(qs[k - 1]) *
+                                          Eigen::Vector3d(speed[k - 1] * std::cos(alpha0), 0.0,
+                                                          speed[k - 1] * std::sin(alpha0));
+            pos += 0.5 * dt * (vprev + core::dcm_earth_from_unit_quaternion(qs[k]) * vb);
             roll += 0.5 * dt * (om[1] + X(k - 1, Q::p));
         }
         X.row(k).segment<3>(Q::x) = pos;

@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
 
 namespace manta::replay {
@@ -25,12 +26,6 @@ constexpr double pi = std::numbers::pi;
 /// `a` shifted by a multiple of 2 pi to lie nearest `ref`.
 double nearest(double a, double ref) {
     return a + 2.0 * pi * std::round((ref - a) / (2.0 * pi));
-}
-
-/// Principal 3-2-1 triple of body_from_frame.
-std::array<double, 3> principal(const Matrix3d& C) {
-    const double theta = std::asin(std::clamp(-C(0, 2), -1.0, 1.0));
-    return {std::atan2(C(1, 2), C(2, 2)), theta, std::atan2(C(0, 1), C(0, 0))};
 }
 
 /// Of the two equivalent triples of `e`, each angle shifted by 2 pi k, the one nearest `prev`.
@@ -74,27 +69,14 @@ std::vector<double> mach_column(const Trajectory& tr) {
 
 Vector3d air_velocity_earth(const aero::MotionState& s) {
     // modes: elevator aileron rudder V alpha beta mach
-    const double V = s.modes[3], a = s.modes[4], b = s.modes[5];
-    const Vector3d uvw(V * std::cos(a) * std::cos(b), V * std::sin(b),
-                       V * std::sin(a) * std::cos(b));
-    return body_from_euler(s.euler).transpose() * uvw;
+    const Vector3d uvw = core::air_velocity_body(s.modes[3], s.modes[4], s.modes[5]);
+    return core::dcm_body_from_earth(s.euler).transpose() * uvw;
 }
 
 }  // namespace
 
-Matrix3d body_from_euler(const std::array<double, 3>& e) {
-    const double cf = std::cos(e[0]), sf = std::sin(e[0]);
-    const double ct = std::cos(e[1]), st = std::sin(e[1]);
-    const double cp = std::cos(e[2]), sp = std::sin(e[2]);
-    Matrix3d C;
-    C << ct * cp, ct * sp, -st,                                   //
-        sf * st * cp - cf * sp, sf * st * sp + cf * cp, sf * ct,  //
-        cf * st * cp + sf * sp, cf * st * sp - sf * cp, cf * ct;
-    return C;
-}
-
 std::array<double, 3> continuous_euler(const Matrix3d& C, const std::array<double, 3>* previous) {
-    std::array<double, 3> e = principal(C);
+    std::array<double, 3> e = core::euler_from_dcm(C);
     if (!previous) return e;
     if (std::abs(C(0, 2)) > 1.0 - 1e-12) {
         // Gimbal lock: only phi - psi (theta = +90 deg) or phi + psi (-90 deg) is defined;
@@ -202,12 +184,8 @@ ReplayMotion build_motion(const Trajectory& tr, double h) {
     rm.entry_position = Vector3d(tr.position[0][0], tr.position[1][0], tr.position[2][0]);
     rm.chi0 = std::atan2(va0.y(), va0.x());
     rm.gamma0 = std::asin(std::clamp(-va0.z() / va0.norm(), -1.0, 1.0));
-    const double cc = std::cos(rm.chi0), sc = std::sin(rm.chi0);
-    const double cg = std::cos(rm.gamma0), sg = std::sin(rm.gamma0);
-    Matrix3d R3, R2;
-    R3 << cc, sc, 0.0, -sc, cc, 0.0, 0.0, 0.0, 1.0;
-    R2 << cg, 0.0, -sg, 0.0, 1.0, 0.0, sg, 0.0, cg;
-    rm.earth_to_motion = R2 * R3;
+    // The 3-2-1 rotation by the track angle about z, then the flight-path angle about y.
+    rm.earth_to_motion = core::dcm_body_from_earth(0.0, rm.gamma0, rm.chi0);
     const Matrix3d& Cme = rm.earth_to_motion;
     const Vector3d ex = rm.v0 * Vector3d::UnitX();
     auto rel_velocity = [&](double t) { return Vector3d(Cme * air_velocity_earth(I.at(t)) - ex); };
@@ -231,7 +209,7 @@ ReplayMotion build_motion(const Trajectory& tr, double h) {
             f_prev = f;
         }
         const aero::MotionState s = I.at(t);
-        const Matrix3d Cbm = body_from_euler(s.euler) * Cme.transpose();
+        const Matrix3d Cbm = core::dcm_body_from_earth(s.euler) * Cme.transpose();
         const std::array<double, 3> e = continuous_euler(Cbm, k > 0 ? &prev : nullptr);
         prev = e;
         for (std::size_t j = 0; j < 3; ++j) {
@@ -257,8 +235,8 @@ ReplayMotion build_motion(const Trajectory& tr, double h) {
 
 AirState motion_air_state(const aero::Motion& motion, double v0, double t) {
     const aero::MotionState s = motion.at(t);
-    const Vector3d uvw =
-        body_from_euler(s.euler) * Vector3d(v0 + s.velocity[0], s.velocity[1], s.velocity[2]);
+    const Vector3d uvw = core::dcm_body_from_earth(s.euler) *
+                         Vector3d(v0 + s.velocity[0], s.velocity[1], s.velocity[2]);
     AirState a;
     a.airspeed = uvw.norm();
     a.alpha = std::atan2(uvw.z(), uvw.x());
@@ -272,7 +250,7 @@ EarthPose earth_pose(const ReplayMotion& rm, double t) {
     const Vector3d local(rm.v0 * (t - rm.motion.t.front()) + s.position[0], s.position[1],
                          s.position[2]);
     p.position = rm.entry_position + rm.earth_to_motion.transpose() * local;
-    p.euler = continuous_euler(body_from_euler(s.euler) * rm.earth_to_motion, nullptr);
+    p.euler = continuous_euler(core::dcm_body_from_earth(s.euler) * rm.earth_to_motion, nullptr);
     return p;
 }
 

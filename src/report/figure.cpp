@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 
+#include "manta/core/frames.hpp"
 #include "manta/report/html.hpp"
 
 namespace manta::report {
@@ -386,17 +387,12 @@ std::string to_svg(const FlightPath& p) {
                      colour_of("path"));
     s += '\n';
     for (const std::size_t i : p.glyphs) {
-        // Body to earth (NED): transpose of the 3-2-1 earth-to-body rotation.
-        const double cf = std::cos(p.phi[i]), sf = std::sin(p.phi[i]);
-        const double ct = std::cos(p.theta[i]), st = std::sin(p.theta[i]);
-        const double cp = std::cos(p.psi[i]), sp = std::sin(p.psi[i]);
-        const double R[3][3] = {{ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp},
-                                {ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp},
-                                {-st, sf * ct, cf * ct}};
+        // Body to earth (NED).
+        const Eigen::Matrix3d R = core::dcm_earth_from_body(p.phi[i], p.theta[i], p.psi[i]);
         auto earth = [&](double bx, double by, double bz) {
-            const double n = R[0][0] * bx + R[0][1] * by + R[0][2] * bz;
-            const double e = R[1][0] * bx + R[1][1] * by + R[1][2] * bz;
-            const double d = R[2][0] * bx + R[2][1] * by + R[2][2] * bz;
+            const double n = R(0, 0) * bx + R(0, 1) * by + R(0, 2) * bz;
+            const double e = R(1, 0) * bx + R(1, 1) * by + R(1, 2) * bz;
+            const double d = R(2, 0) * bx + R(2, 1) * by + R(2, 2) * bz;
             return proj(p.east[i] + p.glyph_scale * e, p.north[i] + p.glyph_scale * n,
                         p.altitude[i] - p.glyph_scale * d);
         };

@@ -12,6 +12,7 @@
 
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/report/text_csv.hpp"
 
@@ -78,7 +79,9 @@ void add_surface(const geometry::LiftingSurface& s, AircraftInfo& a, const Eigen
         a.front.push_back(front);
         for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
             auto body = [&](const Eigen::Vector3d& g) {
-                return std::array<double, 3>{-(g.x() - cg.x()), m * g.y(), -(g.z() - cg.z())};
+                const Eigen::Vector3d b = core::body_from_geometry(
+                    Eigen::Vector3d(g.x() - cg.x(), m * g.y(), g.z() - cg.z()));
+                return std::array<double, 3>{b.x(), b.y(), b.z()};
             };
             const auto p0 = body(ring[i]);
             const auto p1 = body(ring[i + 1]);

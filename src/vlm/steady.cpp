@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/vlm/detail/biot_savart.hpp"
 #include "manta/vlm/detail/kernels.hpp"
 
@@ -18,15 +19,10 @@ using Eigen::MatrixXd;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 
-Vector3d freestream_geometry(double alpha, double beta) {
-    // Aircraft velocity in body axes (V cos a cos b, V sin b, V sin a cos b); the air moves the
-    // opposite way, and geometry axes are body axes with x and z reversed.
-    return {std::cos(alpha) * std::cos(beta), -std::sin(beta), std::sin(alpha) * std::cos(beta)};
-}
-
 Vector3d omega_geometry(const Reference& ref, double p_hat, double q_hat, double r_hat) {
-    // p = 2 V p_hat / b with V = 1; body (p, q, r) -> geometry (-p, q, -r).
-    return {-2.0 * p_hat / ref.span, 2.0 * q_hat / ref.chord, -2.0 * r_hat / ref.span};
+    // p = 2 V p_hat / b with V = 1.
+    return core::geometry_from_body(
+        Vector3d(2.0 * p_hat / ref.span, 2.0 * q_hat / ref.chord, 2.0 * r_hat / ref.span));
 }
 
 namespace {
@@ -617,7 +613,7 @@ Vector3d SteadySolver::wake_direction(const FlowState& state) const {
     if (options_.trailing_legs == TrailingLegs::body_axis || model_.z_symmetry != 0 ||
         (model_.y_symmetry != 0 && state.beta != 0.0))
         return Vector3d::UnitX();
-    return freestream_geometry(state.alpha, state.beta);
+    return core::free_stream_geometry(state.alpha, state.beta);
 }
 
 SteadySolver::Trefftz SteadySolver::trefftz_plane(const Vector3d& d) const {
@@ -873,7 +869,7 @@ struct RawLoads {
 }  // namespace
 
 SteadyResult SteadySolver::loads(const Units& u, const FlowState& s, bool with_detail) const {
-    const Vector3d V = freestream_geometry(s.alpha, s.beta);
+    const Vector3d V = core::free_stream_geometry(s.alpha, s.beta);
     const Vector3d w = omega_geometry(model_.reference, s.p_hat, s.q_hat, s.r_hat);
     Eigen::Matrix<double, 6, 1> x;
     x << V, w;
@@ -883,7 +879,7 @@ SteadyResult SteadySolver::loads(const Units& u, const FlowState& s, bool with_d
 SteadyResult SteadySolver::loads_from(const VectorXd& g, const VectorXd& vind, const FlowState& s,
                                       const Trefftz& tp, bool with_detail) const {
     const Reference& ref = model_.reference;
-    const Vector3d V = freestream_geometry(s.alpha, s.beta);
+    const Vector3d V = core::free_stream_geometry(s.alpha, s.beta);
     const Vector3d w = omega_geometry(ref, s.p_hat, s.q_hat, s.r_hat);
     const int n = lattice_.size();
     RawLoads raw;
@@ -928,12 +924,13 @@ SteadyResult SteadySolver::loads_from(const VectorXd& g, const VectorXd& vind, c
         raw.M = Vector3d(0.0, 2.0 * raw.M.y(), 0.0);
     }
     const double qS = 0.5 * ref.area;
-    r.body.CX = -raw.F.x() / qS;
-    r.body.CY = raw.F.y() / qS;
-    r.body.CZ = -raw.F.z() / qS;
-    r.body.Cl = -raw.M.x() / (qS * ref.span);
-    r.body.Cm = raw.M.y() / (qS * ref.chord);
-    r.body.Cn = -raw.M.z() / (qS * ref.span);
+    const Vector3d F = core::body_from_geometry(raw.F), M = core::body_from_geometry(raw.M);
+    r.body.CX = F.x() / qS;
+    r.body.CY = F.y() / qS;
+    r.body.CZ = F.z() / qS;
+    r.body.Cl = M.x() / (qS * ref.span);
+    r.body.Cm = M.y() / (qS * ref.chord);
+    r.body.Cn = M.z() / (qS * ref.span);
     const auto wind = aero::wind_from_body(r.body.CX, r.body.CY, r.body.CZ, s.alpha, s.beta);
     r.CL = wind.CL;
     r.CD_near_field = wind.CD;
@@ -1003,7 +1000,7 @@ Derivatives SteadySolver::derivatives(const FlowState& state) const {
     // deflection (the right-hand side is linear in the deflections: first-order normals).
     const auto nc = static_cast<Eigen::Index>(lattice_.control_names.size());
     const int n = lattice_.size();
-    const Vector3d V = freestream_geometry(s.alpha, s.beta);
+    const Vector3d V = core::free_stream_geometry(s.alpha, s.beta);
     const Vector3d w = omega_geometry(model_.reference, s.p_hat, s.q_hat, s.r_hat);
     MatrixXd B(n, 6 + nc);
     for (int k = 0; k < 3; ++k) {

@@ -43,6 +43,7 @@
 #include <utility>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/vlm/detail/biot_savart.hpp"
 #include "manta/vlm/detail/dense_lu.hpp"
@@ -68,20 +69,7 @@ std::vector<double> UnsteadyHistory::column(double UnsteadyStep::*member) const 
 namespace {
 
 /// Geometry axes <-> body axes (a rotation by pi about y): (x, y, z)_body = D (x, y, z)_geometry.
-const Matrix3d D = Eigen::Vector3d(-1.0, 1.0, -1.0).asDiagonal();
-
-/// Direction-cosine matrix from the motion frame to body axes for 3-2-1 Euler angles (phi, theta,
-/// psi): v_body = C v_motion, C = R1(phi) R2(theta) R3(psi).
-Matrix3d body_from_motion(const std::array<double, 3>& e) {
-    const double cf = std::cos(e[0]), sf = std::sin(e[0]);
-    const double ct = std::cos(e[1]), st = std::sin(e[1]);
-    const double cp = std::cos(e[2]), sp = std::sin(e[2]);
-    Matrix3d C;
-    C << ct * cp, ct * sp, -st,                                   //
-        sf * st * cp - cf * sp, sf * st * sp + cf * cp, sf * ct,  //
-        cf * st * cp + sf * sp, cf * st * sp - sf * cp, cf * ct;
-    return C;
-}
+const Matrix3d D = core::dcm_body_from_geometry();
 
 /// Trailing-edge point of a strip edge.
 Vector3d trailing_edge(const Vector3d& le, double chord) {
@@ -986,7 +974,8 @@ void UnsteadySolver::Impl::build_lattice_influence() {
 void UnsteadySolver::Impl::pose_at(double t, Pose& p) const {
     const aero::MotionState s = motion.at(t);
     p.t = t;
-    p.C = body_from_motion(s.euler);
+    // From the motion frame to body axes (3-2-1): v_body = C v_motion.
+    p.C = core::dcm_body_from_earth(s.euler);
     p.r_ref = Vector3d(s.position[0], s.position[1], s.position[2]);
     p.shift = v0 * (t - t0);
     const Vector3d v_motion =
@@ -1300,14 +1289,15 @@ void UnsteadySolver::Impl::loads() {
     const Reference& R = model.reference;
     const double V = pose.airspeed > 0.0 ? pose.airspeed : v0;
     const double qS = 0.5 * V * V * R.area;
-    auto body_of = [&](const Vector3d& F, const Vector3d& M) {
+    auto body_of = [&](const Vector3d& Fg, const Vector3d& Mg) {
+        const Vector3d F = core::body_from_geometry(Fg), M = core::body_from_geometry(Mg);
         aero::BodyCoefficients<double> b;
-        b.CX = -F.x() / qS;
+        b.CX = F.x() / qS;
         b.CY = F.y() / qS;
-        b.CZ = -F.z() / qS;
-        b.Cl = -M.x() / (qS * R.span);
+        b.CZ = F.z() / qS;
+        b.Cl = M.x() / (qS * R.span);
         b.Cm = M.y() / (qS * R.chord);
-        b.Cn = -M.z() / (qS * R.span);
+        b.Cn = M.z() / (qS * R.span);
         return b;
     };
     const auto bk = body_of(F_kj, M_kj), bt = body_of(F_t, M_t);

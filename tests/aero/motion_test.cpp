@@ -16,6 +16,7 @@
 
 #include "manta/aero/motion.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 
 namespace manta::aero {
@@ -438,7 +439,7 @@ TEST(MotionKinematics, BodyRatesMatchTheRotationOfTheAxes) {
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
                 for (int k = 0; k < 3; ++k) w[i][j] -= (cp[i][k] - cm[i][k]) / (2 * h) * c[j][k];
-        const auto pqr = body_rates_from_euler(a, rates(t));
+        const auto pqr = manta::core::body_rates_from_euler_rates(a, rates(t));
         EXPECT_NEAR(pqr[0], w[2][1], 1e-8);
         EXPECT_NEAR(pqr[1], w[0][2], 1e-8);
         EXPECT_NEAR(pqr[2], w[1][0], 1e-8);

@@ -10,6 +10,7 @@
 
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/autodiff.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/eom.hpp"
 #include "manta/flightdyn/simulate.hpp"
@@ -52,7 +53,7 @@ double dcm_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 /// Angular momentum about the CG in earth axes from an output row (phi theta psi p q r).
 Eigen::Vector3d h_earth(const fd::FlightModel& m, const std::vector<double>& row) {
     const Eigen::Vector3d w(row[10], row[11], row[12]);
-    return fd::dcm_earth_from_body(row[4], row[5], row[6]) * (m.mass.inertia * w);
+    return manta::core::dcm_earth_from_body(row[4], row[5], row[6]) * (m.mass.inertia * w);
 }
 
 }  // namespace
@@ -72,15 +73,15 @@ TEST(Conversions, EulerQuaternionRoundTrip) {
         EXPECT_NEAR(e[1], theta, 1e-9);
         EXPECT_NEAR(e[2], psi, 1e-9);
         // The quaternion and the Euler angles give the same direction-cosine matrix.
-        EXPECT_LT(
-            dcm_distance(fd::dcm_earth_from_body(q), fd::dcm_earth_from_body(phi, theta, psi)),
-            1e-14);
+        EXPECT_LT(dcm_distance(manta::core::dcm_earth_from_quaternion(q),
+                               manta::core::dcm_earth_from_body(phi, theta, psi)),
+                  1e-14);
     }
 }
 
 TEST(Conversions, DcmIsAProperRotationAndMatchesTheNavigationEquation) {
     const double phi = deg(30.0), theta = deg(-20.0), psi = deg(135.0);
-    const Eigen::Matrix3d c = fd::dcm_earth_from_body(phi, theta, psi);
+    const Eigen::Matrix3d c = manta::core::dcm_earth_from_body(phi, theta, psi);
     EXPECT_LT((c * c.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-15);
     EXPECT_NEAR(c.determinant(), 1.0, 1e-15);
     // Body x axis in earth axes: heading psi, pitched up by theta.
@@ -179,7 +180,7 @@ TEST(AnalyticMotion, SpinAboutAPrincipalAxisStaysConstant) {
         }
         // The attitude turns about that axis at 0.7 rad/s: the rotation angle of the final DCM.
         const auto& last = r.rows.back();
-        const Eigen::Matrix3d c = fd::dcm_earth_from_body(last[4], last[5], last[6]);
+        const Eigen::Matrix3d c = manta::core::dcm_earth_from_body(last[4], last[5], last[6]);
         const double angle = std::acos(std::clamp((c.trace() - 1.0) / 2.0, -1.0, 1.0));
         const double expected = std::remainder(0.7 * 10.0, 2 * manta::core::pi);
         EXPECT_NEAR(angle, std::abs(expected), 1e-9);

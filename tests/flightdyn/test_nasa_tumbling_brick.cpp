@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "manta/aero/database.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/simulate.hpp"
@@ -129,7 +130,8 @@ Eigen::Vector3d euler_wrt_rotating_ned(const std::vector<double>& row) {
     const double a = omega_earth * row[0];
     Eigen::Matrix3d rx;  // active rotation about north by a
     rx << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
-    const Eigen::Matrix3d c = rx.transpose() * fd::dcm_earth_from_body(row[4], row[5], row[6]);
+    const Eigen::Matrix3d c =
+        rx.transpose() * manta::core::dcm_earth_from_body(row[4], row[5], row[6]);
     return {std::atan2(c(2, 1), c(2, 2)), -std::asin(std::clamp(c(2, 0), -1.0, 1.0)),
             std::atan2(c(1, 0), c(0, 0))};
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "manta/aircraft/aircraft.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/units.hpp"
 #include "manta/flightdyn/simulate.hpp"
 #include "manta/flightdyn/trim.hpp"
@@ -25,7 +26,7 @@ namespace {
 enum Col : int { T = 0, X, Y, Z, PHI, THETA, PSI, V, ALPHA, BETA, P, Q, R };
 
 Eigen::Matrix3d dcm(const std::vector<double>& row) {
-    return fd::dcm_earth_from_body(row[PHI], row[THETA], row[PSI]);
+    return manta::core::dcm_earth_from_body(row[PHI], row[THETA], row[PSI]);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "manta/core/frames.hpp"
 #include "manta/replay/motion_builder.hpp"
 #include "manta/replay/trajectory.hpp"
 
@@ -47,7 +48,7 @@ std::string to_csv(const std::vector<Row>& rows) {
 
 /// Principal Euler angles (|theta| <= 90 deg, phi, psi in (-pi, pi]) of an attitude.
 std::array<double, 3> principal(const std::array<double, 3>& e) {
-    return replay::continuous_euler(replay::body_from_euler(e), nullptr);
+    return replay::continuous_euler(manta::core::dcm_body_from_earth(e), nullptr);
 }
 
 void check_reintegration(const std::vector<Row>& rows, double pos_tol, double att_tol) {
@@ -57,7 +58,8 @@ void check_reintegration(const std::vector<Row>& rows, double pos_tol, double at
     for (const Row& r : rows) {
         const replay::EarthPose p = replay::earth_pose(rm, r.t);
         worst_x = std::max(worst_x, (p.position - r.x).norm());
-        const Matrix3d a = replay::body_from_euler(p.euler), b = replay::body_from_euler(r.e);
+        const Matrix3d a = manta::core::dcm_body_from_earth(p.euler),
+                       b = manta::core::dcm_body_from_earth(r.e);
         worst_c = std::max(worst_c, (a - b).cwiseAbs().maxCoeff());
         // The air state the sources see is the trajectory's.
         const replay::AirState s = replay::motion_air_state(rm.motion, rm.v0, r.t);

@@ -24,6 +24,7 @@
 
 #include "manta/aero/motion.hpp"
 #include "manta/aircraft/aircraft.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/vlm/lattice.hpp"
 #include "manta/vlm/model.hpp"
 #include "manta/vlm/source.hpp"
@@ -81,7 +82,7 @@ TEST(VlmWakeConsistency, BodyAxisLegsMatchPlanarWake) {
     s.alpha = 10.0 * deg;
     const vlm::SteadyResult rb = sb.solve(s), rf = sf.solve(s);
     EXPECT_EQ(rb.wake_direction, Eigen::Vector3d::UnitX());
-    EXPECT_NEAR(rf.wake_direction.dot(vlm::freestream_geometry(s.alpha, 0.0)), 1.0, 1e-15);
+    EXPECT_NEAR(rf.wake_direction.dot(manta::core::free_stream_geometry(s.alpha, 0.0)), 1.0, 1e-15);
     // A symmetric state keeps zero lateral loads (the bend's rows filled by the mirror symmetry):
     // measured 2e-9 with the single-precision path (its rounding), 1e-16 in double precision.
     EXPECT_LT(std::abs(rf.body.Cl) + std::abs(rf.body.Cn) + std::abs(rf.CY), 1e-8);

@@ -49,12 +49,6 @@ struct MotionState {
     std::vector<double> mode_rates;       ///< their time derivatives [rad/s]
 };
 
-/// Body angular velocity (p, q, r) from 3-2-1 Euler angles and their rates:
-/// p = phi_dot - psi_dot sin(theta), q = theta_dot cos(phi) + psi_dot sin(phi) cos(theta),
-/// r = psi_dot cos(phi) cos(theta) - theta_dot sin(phi).
-[[nodiscard]] std::array<double, 3> body_rates_from_euler(const std::array<double, 3>& euler,
-                                                          const std::array<double, 3>& euler_rates);
-
 /// A sampled motion history: columns of equal length over strictly increasing times.
 ///
 /// Interpolation (`at`): each column is a C1 piecewise cubic Hermite in time whose node slopes are

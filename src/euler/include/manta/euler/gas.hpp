@@ -11,6 +11,8 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "manta/core/frames.hpp"
+
 namespace manta::euler {
 
 /// Number of conserved variables.
@@ -51,7 +53,7 @@ using NodeStates = Eigen::Matrix<double, 5, Eigen::Dynamic>;
 /// 180 deg about y), so the direction is (cos a cos b, -sin b, sin a cos b): positive sideslip
 /// is wind from the right, as in flight mechanics. (SU2 writes +sin b for the y component.)
 [[nodiscard]] inline Vec3 free_stream_direction(double alpha, double beta) noexcept {
-    return {std::cos(alpha) * std::cos(beta), -std::sin(beta), std::sin(alpha) * std::cos(beta)};
+    return core::free_stream_geometry(alpha, beta);
 }
 
 /// Free-stream primitive state (1, M d, 1/gamma) in the solver's variables, d from

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "manta/core/frames.hpp"
 #include "manta/euler/block_matrix.hpp"
 #include "manta/euler/gas.hpp"
 #include "manta/euler/spatial.hpp"
@@ -56,9 +57,9 @@ struct ForceCoefficients {
                                        ///< y on the chord
     double area = 0;                   ///< the reference area used [m^2]
     /// Body axes (x forward, y right, z down; Cl roll, Cm pitch, Cn yaw) from the mesh axes.
-    [[nodiscard]] double Cl() const { return -CMx; }
-    [[nodiscard]] double Cm() const { return CMy; }
-    [[nodiscard]] double Cn() const { return -CMz; }
+    [[nodiscard]] double Cl() const { return core::body_from_geometry(Vec3(CMx, CMy, CMz)).x(); }
+    [[nodiscard]] double Cm() const { return core::body_from_geometry(Vec3(CMx, CMy, CMz)).y(); }
+    [[nodiscard]] double Cn() const { return core::body_from_geometry(Vec3(CMx, CMy, CMz)).z(); }
 };
 
 /// Preconditioner of the implicit step's linear solve (block_matrix.hpp).

@@ -12,12 +12,14 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>  // Matrix3d::inverse()
+#include <array>
 #include <cmath>
 #include <span>
 #include <type_traits>
 
 #include "manta/aero/database.hpp"
 #include "manta/core/fastmath.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/scalar.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
 #include "manta/flightdyn/model.hpp"
@@ -125,7 +127,7 @@ template <class T>
     L.force_body << L.thrust * ce, zero, -L.thrust * se;
     L.moment_body.setConstant(zero);
     if (m.engine.has_position) {
-        const Eigen::Vector3d r = body_from_geom(
+        const Eigen::Vector3d r = core::body_from_geometry(
             Eigen::Vector3d(m.engine.position[0], m.engine.position[1], m.engine.position[2]) -
             m.mass.cg_geom);
         const Vec3<T>& FT = L.force_body;
@@ -167,7 +169,7 @@ void aero_force_moment(const FlightModel& m, const T& qS, const aero::BodyCoeffi
                        Vec3<T>& F, Vec3<T>& M) {
     const double b = m.reference.span, c = m.reference.chord;
     F = Vec3<T>(qS * C.CX, qS * C.CY, qS * C.CZ);
-    const Eigen::Vector3d r = body_from_geom(m.moment_reference_geom - m.mass.cg_geom);
+    const Eigen::Vector3d r = core::body_from_geometry(m.moment_reference_geom - m.mass.cg_geom);
     M = Vec3<T>(qS * b * C.Cl + (r.y() * F.z() - r.z() * F.y()),
                 qS * c * C.Cm + (r.z() * F.x() - r.x() * F.z()),
                 qS * b * C.Cn + (r.x() * F.y() - r.y() * F.x()));
@@ -458,17 +460,17 @@ template <class T>
     d[euler::alpha] = (uu * v_dot.z() - ww * v_dot.x()) * inv_uw2;
     d[euler::beta] = (V * V * v_dot.y() - vv * v_vdot) * inv_V3cb;
     // Attitude kinematics (3-2-1 Euler angles).
-    const T inv_cth = 1.0 / cth;
-    const T qs_rc = w.y() * sphi + w.z() * cphi;
-    d[euler::phi] = w.x() + sth * qs_rc * inv_cth;
-    d[euler::theta] = w.y() * cphi - w.z() * sphi;
-    d[euler::psi] = qs_rc * inv_cth;
+    const std::array<T, 3> angle_rates =
+        core::euler_rates_from_body_rates_sc(sphi, cphi, sth, cth, w.x(), w.y(), w.z());
+    d[euler::phi] = angle_rates[0];
+    d[euler::theta] = angle_rates[1];
+    d[euler::psi] = angle_rates[2];
     // Navigation: earth-axis velocity = C_earth_from_body * v_body.
-    d[euler::x] = cth * cpsi * uu + (sphi * sth * cpsi - cphi * spsi) * vv +
-                  (cphi * sth * cpsi + sphi * spsi) * ww;
-    d[euler::y] = cth * spsi * uu + (sphi * sth * spsi + cphi * cpsi) * vv +
-                  (cphi * sth * spsi - sphi * cpsi) * ww;
-    d[euler::z] = -sth * uu + sphi * cth * vv + cphi * cth * ww;
+    const std::array<T, 3> v_earth = core::earth_from_body(
+        core::dcm_body_from_earth_sc(sphi, cphi, sth, cth, spsi, cpsi), uu, vv, ww);
+    d[euler::x] = v_earth[0];
+    d[euler::y] = v_earth[1];
+    d[euler::z] = v_earth[2];
     d[euler::p] = w_dot.x();
     d[euler::q] = w_dot.y();
     d[euler::r] = w_dot.z();

@@ -77,9 +77,4 @@ struct FlightModel {
         Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
-/// Vector from geometry axes (x aft, y right, z up) to body axes (x fwd, y right, z down).
-[[nodiscard]] inline Eigen::Vector3d body_from_geom(const Eigen::Vector3d& g) {
-    return {-g.x(), g.y(), -g.z()};
-}
-
 }  // namespace manta::flightdyn

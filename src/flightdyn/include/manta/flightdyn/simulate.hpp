@@ -294,10 +294,4 @@ private:
     std::int64_t rows_ = 0;
 };
 
-/// Direction-cosine matrix C_earth_from_body of 3-2-1 Euler angles (Stevens, Lewis & Johnson
-/// 2015, eq. 1.3-20 transposed): v_earth = C * v_body.
-[[nodiscard]] Eigen::Matrix3d dcm_earth_from_body(double phi, double theta, double psi);
-/// Direction-cosine matrix C_earth_from_body of a quaternion (normalised first).
-[[nodiscard]] Eigen::Matrix3d dcm_earth_from_body(const Eigen::Vector4d& q);
-
 }  // namespace manta::flightdyn

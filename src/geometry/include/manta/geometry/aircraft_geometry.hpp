@@ -7,7 +7,7 @@
 /// Geometry axes (the three-view): x aft, y toward the right wing, z up, metres; angles in
 /// radians. The origin is the user's choice (the Ranger example puts it at the nose, on the
 /// fuselage reference line). Flight-mechanics body axes are x forward, y right, z down; the
-/// conversion is `flightdyn::body_from_geom` (x and z change sign).
+/// conversion is `core::body_from_geometry` (core/frames.hpp; x and z change sign).
 ///
 /// Read from the `geometry:` section of an aircraft file (docs/aircraft-format.md#geometry) by
 /// `parse_geometry`; every quantity derived here (planform area, span, mean aerodynamic chord)

@@ -69,12 +69,10 @@ struct ReplayMotion {
 [[nodiscard]] aero::Motion trajectory_interpolant(const Trajectory& trajectory);
 
 /// Euler angles of a direction-cosine matrix body-from-frame, continuous with `previous` (see
-/// build_motion); with no previous the principal triple, |theta| <= pi/2.
+/// build_motion); with no previous the principal triple of core::euler_from_dcm, |theta| <= pi/2.
+/// (The matrix of a triple is core::dcm_body_from_earth, manta/core/frames.hpp.)
 [[nodiscard]] std::array<double, 3> continuous_euler(const Eigen::Matrix3d& body_from_frame,
                                                      const std::array<double, 3>* previous);
-
-/// Direction cosines body-from-frame of 3-2-1 Euler angles.
-[[nodiscard]] Eigen::Matrix3d body_from_euler(const std::array<double, 3>& euler);
 
 /// Air state of the reference point at time t along a motion (as the unsteady sources compute
 /// it): angle of attack, sideslip [rad] and airspeed [m/s].

@@ -111,7 +111,8 @@ struct Derivatives {
 /// * body_axis (default): along the body (geometry) x axis to infinity, the small-angle
 ///   convention of AVL 3.40 and of classical vortex-lattice codes (the steady limit of the
 ///   unsteady solver's WakeModel::planar);
-/// * freestream: along the free stream of the state solved, V_inf = freestream_geometry(alpha,
+/// * freestream: along the free stream of the state solved, V_inf =
+/// core::free_stream_geometry(alpha,
 ///   beta), the direction in which the unsteady solver's wake is convected (WakeModel::prescribed,
 ///   its default), so that an unsteady run held at a constant state converges to the steady
 ///   solution (docs/vlm.md, Trailing legs). VlmSource, hence the tables and the replay, uses it.
@@ -221,8 +222,6 @@ void set_wind_forces(SteadyResult& r, double CL, double CD, double CY, double al
 /// body-axis forces change, lift and moments do not.
 void add_profile_drag(SteadyResult& r, double CD0, double alpha, double beta);
 
-/// Free-stream velocity of the air relative to the aircraft in geometry axes, unit speed.
-[[nodiscard]] Eigen::Vector3d freestream_geometry(double alpha, double beta);
 /// Body rates [rad/s per unit speed] -> geometry-axis angular velocity.
 [[nodiscard]] Eigen::Vector3d omega_geometry(const Reference& ref, double p_hat, double q_hat,
                                              double r_hat);
