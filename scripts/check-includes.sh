@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Fail when a module includes a module it may not depend on (docs/architecture.md).
-# Usage: check-includes.sh [repo-root]
+# Usage: check-includes.sh [--graph] [repo-root]
+#   --graph: print the graph read from the link lists instead, one line per module:
+#            "<module> public: <x> ... private: <y> ..." (scripts/module-graph.sh draws it).
 #
 # The allowed dependencies are read from the CMake link lists, their one definition: for each
 # module src/<m>/, the `manta::<x>` entries of src/<m>/CMakeLists.txt. Inside manta_module(...)
@@ -12,6 +14,8 @@
 # Also failures: an entry naming no module under src/, a module folder without CMakeLists.txt,
 # and a cycle of public entries. New modules are picked up from their folders.
 set -euo pipefail
+graph=0
+if [ "${1:-}" = --graph ]; then graph=1; shift; fi
 root=${1:-$(cd "$(dirname "$0")/.." && pwd)}
 [ -d "$root/src" ] || { echo "check-includes: no src/ folder under '$root'"; exit 2; }
 
@@ -70,6 +74,17 @@ for mod in "${!known[@]}"; do
     [ "$kind" = public ] && public_deps[$mod]+=" $dep"
   done < <(cmake_entries "$file")
 done
+
+if [ $graph -eq 1 ]; then
+  for mod in $(printf '%s\n' "${!direct_deps[@]}" | sort); do
+    priv=""
+    for d in ${direct_deps[$mod]}; do
+      grep -qw -- "$d" <<<"${public_deps[$mod]}" || priv+=" $d"
+    done
+    echo "$mod public:${public_deps[$mod]} private:$priv"
+  done
+  exit $status
+fi
 
 # Transitive closure over public entries (depth-first, with a cycle check).
 declare -A closure=() state=()

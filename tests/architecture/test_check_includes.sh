@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tests of scripts/check-includes.sh on small fake trees in a temporary folder: the dependency
+# Tests of scripts/check-includes.sh (and scripts/module-graph.sh) on small fake trees in a temporary folder: the dependency
 # rules it derives from the CMake link lists (public DEPS transitive, PRIVATE_DEPS for the module
 # alone), new modules picked up from their folders, and the failures it must report.
 # Usage: test_check_includes.sh path/to/check-includes.sh
@@ -94,6 +94,25 @@ fresh cycle
 printf 'manta_module(NAME geo SOURCES geo.cpp DEPS manta::core manta::top)\n' \
   >"$tree/src/geo/CMakeLists.txt"
 expect 1 "a cycle of public dependencies" "form a cycle"
+
+# module-graph.sh draws the same lists: the transitive reduction, private entries dotted.
+fresh graph
+module app 'add_executable(app main.cpp)
+target_link_libraries(app PRIVATE manta::top manta::core)'
+graph_out=$(bash "$(dirname "$check")/module-graph.sh" --mermaid "$tree" 2>&1)
+expected='flowchart BT
+  app -.-> top
+  geo --> core
+  mid --> geo
+  mid -.-> priv
+  priv --> core
+  top --> mid'
+if [ "$graph_out" = "$expected" ]; then echo "ok   module-graph.sh --mermaid"; else
+  echo "FAIL module-graph.sh --mermaid:"; echo "$graph_out"; failures=$((failures + 1)); fi
+svg_out=$(bash "$(dirname "$check")/module-graph.sh" --svg "$tree" 2>&1)
+if [ "$(grep -c '<rect x=' <<<"$svg_out")" -eq 6 ] && grep -q '</svg>' <<<"$svg_out"; then
+  echo "ok   module-graph.sh --svg"; else echo "FAIL module-graph.sh --svg:"; echo "$svg_out"
+  failures=$((failures + 1)); fi
 
 # The repository's own link lists (CMakeLists.txt files only, no sources) with one wrong include
 # each time: geometry may not include vlm; report reaches flightdyn through aircraft's public
