@@ -123,6 +123,12 @@ TEST(Frames, QuaternionDcmMatchesEulerDcm) {
         EXPECT_LT((core::dcm_earth_from_unit_quaternion(qv) - C).cwiseAbs().maxCoeff(), 4e-15);
         // Any norm: normalised first; the sign of q does not matter.
         EXPECT_LT((core::dcm_earth_from_quaternion(-3.0 * qv) - C).cwiseAbs().maxCoeff(), 4e-15);
+        // The scalar form of the flight kernels: q of any norm with 1 / |q|^2.
+        const Eigen::Vector4d qs = 2.5 * qv;
+        const auto c = core::dcm_earth_from_quaternion_sc(qs[0], qs[1], qs[2], qs[3],
+                                                          1.0 / qs.squaredNorm());
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) EXPECT_NEAR(c[i][j], C(i, j), 4e-15);
     }
 }
 

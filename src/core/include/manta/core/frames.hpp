@@ -77,12 +77,10 @@ namespace manta::core {
 /// C_earth_from_body of a unit quaternion (q0 scalar; Stevens, Lewis & Johnson 2015,
 /// eq. 1.8-16); the caller normalises q.
 [[nodiscard]] inline Eigen::Matrix3d dcm_earth_from_unit_quaternion(const Eigen::Vector4d& q) {
-    const double q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
-    Eigen::Matrix3d c;
-    c << q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2),
-        2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1),
-        2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3;
-    return c;
+    const Matrix33<double> c = dcm_earth_from_quaternion_sc(q[0], q[1], q[2], q[3], 1.0);
+    Eigen::Matrix3d C;
+    C << c[0][0], c[0][1], c[0][2], c[1][0], c[1][1], c[1][2], c[2][0], c[2][1], c[2][2];
+    return C;
 }
 
 /// C_earth_from_body of a quaternion of any non-zero norm (normalised first).

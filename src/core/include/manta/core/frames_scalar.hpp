@@ -36,6 +36,20 @@ template <class T>
             C[0][2] * u + C[1][2] * v + C[2][2] * w};
 }
 
+/// C_earth_from_body of the quaternion (q0 scalar) q / |q| from q and inv_n2 = 1 / |q|^2 (any
+/// scalar): the unit-quaternion matrix (Stevens, Lewis & Johnson 2015, eq. 1.8-16) of q, each
+/// entry times inv_n2. inv_n2 = 1 takes q as unit.
+template <class T>
+[[nodiscard]] Matrix33<T> dcm_earth_from_quaternion_sc(const T& q0, const T& q1, const T& q2,
+                                                       const T& q3, const T& inv_n2) {
+    return {{{(q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * inv_n2, 2.0 * (q1 * q2 - q0 * q3) * inv_n2,
+              2.0 * (q1 * q3 + q0 * q2) * inv_n2},
+             {2.0 * (q1 * q2 + q0 * q3) * inv_n2, (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * inv_n2,
+              2.0 * (q2 * q3 - q0 * q1) * inv_n2},
+             {2.0 * (q1 * q3 - q0 * q2) * inv_n2, 2.0 * (q2 * q3 + q0 * q1) * inv_n2,
+              (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * inv_n2}}};
+}
+
 /// Euler-angle rates (phi_dot, theta_dot, psi_dot) of the body rates (p, q, r) from the sines
 /// and cosines of phi and theta (any scalar; singular at cos(theta) = 0):
 ///   phi_dot = p + tan(theta) (q sin(phi) + r cos(phi)), theta_dot = q cos(phi) - r sin(phi),

@@ -493,13 +493,10 @@ template <class T>
     // C_earth_from_body of the unit quaternion (normalised here so drift does not scale vectors).
     const T n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3;
     const T inv_n2 = 1.0 / n2;
-    const T c11 = (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3) * inv_n2,
-            c12 = 2.0 * (q1 * q2 - q0 * q3) * inv_n2, c13 = 2.0 * (q1 * q3 + q0 * q2) * inv_n2;
-    const T c21 = 2.0 * (q1 * q2 + q0 * q3) * inv_n2,
-            c22 = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * inv_n2,
-            c23 = 2.0 * (q2 * q3 - q0 * q1) * inv_n2;
-    const T c31 = 2.0 * (q1 * q3 - q0 * q2) * inv_n2, c32 = 2.0 * (q2 * q3 + q0 * q1) * inv_n2,
-            c33 = (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * inv_n2;
+    const auto C = core::dcm_earth_from_quaternion_sc(q0, q1, q2, q3, inv_n2);
+    const T &c11 = C[0][0], &c12 = C[0][1], &c13 = C[0][2];
+    const T &c21 = C[1][0], &c22 = C[1][1], &c23 = C[1][2];
+    const T &c31 = C[2][0], &c32 = C[2][1], &c33 = C[2][2];
     const double g = m.environment.gravity;
     const Vec3<T> g_body(g * c31, g * c32, g * c33);  // C_body_from_earth * (0, 0, g)
     const T airspeed = sqrt(T(v_body.squaredNorm()));
