@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 
 namespace manta::meshmotion {
 
@@ -31,7 +32,7 @@ using Clock = std::chrono::steady_clock;
 
 /// Geometry (mesh) axes <-> body axes, a rotation by pi about y: v_body = D v_geometry; the same
 /// matrix turns motion-frame components into the flow frame's mesh-like axes.
-const Matrix3d D = Vector3d(-1.0, 1.0, -1.0).asDiagonal();
+const Matrix3d D = core::dcm_body_from_geometry();
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -207,14 +208,7 @@ struct PointSet {
 }  // namespace
 
 Matrix3d body_from_motion(const std::array<double, 3>& e) {
-    const double cf = std::cos(e[0]), sf = std::sin(e[0]);
-    const double ct = std::cos(e[1]), st = std::sin(e[1]);
-    const double cp = std::cos(e[2]), sp = std::sin(e[2]);
-    Matrix3d C;
-    C << ct * cp, ct * sp, -st,                                   //
-        sf * st * cp - cf * sp, sf * st * sp + cf * cp, sf * ct,  //
-        cf * st * cp + sf * sp, cf * st * sp - sf * cp, cf * ct;
-    return C;
+    return core::dcm_body_from_earth(e);
 }
 
 RigidPose rigid_pose(const aero::MotionState& s, const Vector3d& g) {
