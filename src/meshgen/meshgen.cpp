@@ -9,8 +9,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -20,6 +18,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/meshgen/meshgen.hpp"
+#include "cgns_writer.hpp"
 #include "shapes.hpp"
 
 namespace manta::meshgen {
@@ -193,7 +192,7 @@ struct Piece {
 
 /// Elliptic fuselage cross-section as a closed periodic spline (seam at the bottom).
 int fuselage_wire(const geometry::FuselageStation& s, double w, double h) {
-    const int n = std::getenv("MG_FN") ? std::atoi(std::getenv("MG_FN")) : 24;
+    constexpr int n = 24;
     std::vector<int> pts;
     for (int k = 0; k < n; ++k) {
         const double t = 2.0 * std::numbers::pi * k / n;
@@ -223,8 +222,6 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
     const bool half = o.model == Model::half;
     Cad cad;
     std::vector<Piece> pieces;
-    auto tdbg = Clock::now();
-    auto DBG = [&](const char* w) { if (std::getenv("MANTA_MESHGEN_DEBUG")) std::fprintf(stderr, "meshgen: %s %.2f s\n", w, seconds_since(tdbg)); tdbg = Clock::now(); };
     for (std::size_t i = 0; i < g.surfaces.size(); ++i) {
         const auto& w = g.surfaces[i];
         std::vector<int> wires;
@@ -313,7 +310,6 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         }
         pieces.insert(pieces.end(), right.begin(), right.end());
     }
-    DBG("surfaces");
     if (!g.fuselage.empty()) {
         const auto& st = g.fuselage.stations;
         double wmax = 0.0;
@@ -332,7 +328,7 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         }
         gmsh::vectorpair out;
         try {
-            occ::addThruSections(wires, out, -1, true, std::getenv("MG_RULED") != nullptr);
+            occ::addThruSections(wires, out, -1, true, false);
         } catch (const std::exception& e) {
             detail::fail_key(a, "geometry.fuselage", "stations",
                              fmt::format("cannot be lofted ({})", e.what()),
@@ -340,16 +336,12 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         }
         pieces.push_back({volume_of(out, "the fuselage"), -1});
     }
-    DBG("fuselage");
     occ::synchronize();
     // Fuse the parts into one body; the control-surface pieces keep their faces.
     gmsh::vectorpair object{{3, pieces.front().volume}}, tools;
     for (std::size_t p = 1; p < pieces.size(); ++p) tools.emplace_back(3, pieces[p].volume);
     gmsh::vectorpair body;
-    if (std::getenv("MG_NOFUSE")) {
-        body = object;
-        body.insert(body.end(), tools.begin(), tools.end());
-    } else if (!tools.empty()) {
+    if (!tools.empty()) {
         std::vector<gmsh::vectorpair> map;
         try {
             occ::fuse(object, tools, body, map);
@@ -361,7 +353,6 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
     } else {
         body = object;
     }
-    DBG("fuse");
     occ::synchronize();
     double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
     double bx0 = 1e300, by0 = 1e300, bz0 = 1e300, bx1 = -1e300, by1 = -1e300, bz1 = -1e300;
@@ -382,7 +373,6 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         throw InputError(fmt::format("meshgen: far-field radius {} m ({} spans) is not beyond the "
                                      "aircraft ({} m across); expected more spans",
                                      cad.radius, o.farfield_spans, size));
-    DBG("mass");
     const int domain = occ::addSphere(cad.centre.x(), 0.0, cad.centre.z(), cad.radius, -1,
                                       -std::numbers::pi / 2, std::numbers::pi / 2,
                                       half ? std::numbers::pi : 2 * std::numbers::pi);
@@ -397,7 +387,6 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         }
     }
     occ::synchronize();
-    DBG("cut");
     for (const auto& [d, t] : fluid)
         if (d == 3) cad.fluid.push_back(t);
     if (cad.fluid.empty()) throw NumericalError("meshgen: no fluid volume left after the cut");
@@ -431,7 +420,6 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
             occ::synchronize();
         }
     }
-    DBG("stray");
     // Classify the fluid's boundary faces.
     const double tol_far = 2.0 * size;
     for (const auto& r : cad.regions) {
@@ -465,7 +453,6 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         }
         cad.marker_faces[marker].push_back(tag);
     }
-    DBG("classify");
     // Every control surface of the model must have wetted faces.
     for (const auto& r : cad.regions) {
         if (half && r.mirrored) continue;
@@ -632,7 +619,6 @@ MeshResult generate_mesh(const aircraft::AircraftDefinition& a, const MeshOption
     gmsh::option::setNumber("Mesh.Algorithm", 6);
     gmsh::option::setNumber("Mesh.Algorithm3D", 1);
     gmsh::option::setNumber("Mesh.Optimize", 1);
-    gmsh::option::setNumber("Mesh.OptimizeNetgen", std::getenv("MG_NETGEN") ? 1 : 0);
     const auto tm = Clock::now();
     try {
         gmsh::model::mesh::generate(3);
@@ -696,7 +682,20 @@ MeshResult generate_mesh(const aircraft::AircraftDefinition& a, const MeshOption
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
     gmsh::option::setNumber("Mesh.Binary", 0);
     try {
-        gmsh::write(tmp.string());
+        if (ext == ".cgns") {
+            std::vector<std::pair<std::string, long long>> counts;
+            std::vector<std::string> roles;
+            for (const auto& m : res.markers) {
+                counts.emplace_back(m.name, m.faces);
+                roles.push_back(m.role);
+            }
+            detail::write_cgns(tmp, coords, tets, tris, counts, roles);
+        } else {
+            gmsh::write(tmp.string());
+        }
+    } catch (const Error&) {
+        std::filesystem::remove(tmp, ec);
+        throw;
     } catch (...) {
         std::filesystem::remove(tmp, ec);
         std::string last;

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <regex>
-#include <cstdlib>
 
 #include "manta/core/config.hpp"
 #include "manta/core/error.hpp"
@@ -112,7 +111,7 @@ Contour section_contour(const geometry::Airfoil& airfoil) {
     Contour c;
     std::vector<Eigen::Vector2d> pts;
     if (airfoil.has_coordinates()) {
-        pts = airfoil.coordinates(std::getenv("MG_N") ? std::atoi(std::getenv("MG_N")) : 31);
+        pts = airfoil.coordinates(31);
     } else {
         // A 6-series section: its thickness form is tabulated (Abbott & von Doenhoff, app. I),
         // not analytic. It is meshed with the four-digit thickness form of the same maximum
@@ -120,7 +119,7 @@ Contour section_contour(const geometry::Airfoil& airfoil) {
         // reported.
         const auto& d = airfoil.designation();
         const int tt = std::clamp(static_cast<int>(std::lround(100.0 * d.thickness)), 1, 40);
-        const auto base = geometry::Airfoil::naca(fmt::format("NACA 00{:02d}", tt)).coordinates(std::getenv("MG_N") ? std::atoi(std::getenv("MG_N")) : 31);
+        const auto base = geometry::Airfoil::naca(fmt::format("NACA 00{:02d}", tt)).coordinates(31);
         std::vector<Eigen::Vector2d> up, lo;
         for (const auto& p : base) {
             if (p.y() < 0.0) continue;
@@ -231,6 +230,22 @@ bool segments_cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
     return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
+/// True if p lies inside the fuselage's elliptic cross-section at its x (linear between
+/// stations).
+bool inside_fuselage(const geometry::Fuselage& fus, const Eigen::Vector3d& p) {
+    const auto& st = fus.stations;
+    if (st.size() < 2 || p.x() <= st.front().x || p.x() >= st.back().x) return false;
+    std::size_t j = 0;
+    while (j + 2 < st.size() && st[j + 1].x < p.x()) ++j;
+    const double t = (p.x() - st[j].x) / (st[j + 1].x - st[j].x);
+    const double w = (1 - t) * st[j].width + t * st[j + 1].width;
+    const double h = (1 - t) * st[j].height + t * st[j + 1].height;
+    const double zc = (1 - t) * st[j].z_centre + t * st[j + 1].z_centre;
+    if (!(w > 0.0 && h > 0.0)) return false;
+    const double u = p.y() / (0.5 * w), v = (p.z() - zc) / (0.5 * h);
+    return u * u + v * v < 1.0;
+}
+
 }  // namespace
 
 void check_buildable(const aircraft::AircraftDefinition& a) {
@@ -336,6 +351,25 @@ void check_buildable(const aircraft::AircraftDefinition& a) {
             fail_key(a, key + ".span_fraction", fmt::format("[{}, {}]", e0, e1),
                      fmt::format("lies outside its surface '{}'", cs.surface),
                      "fractions 0 <= eta0 < eta1 <= 1 of the semi-span");
+        // Wholly inside the fuselage: every sampled point of the hinged part (hinge to trailing
+        // edge, side to side, upper and lower surface) lies within the elliptic stations.
+        if (!g.fuselage.empty()) {
+            bool inside = true;
+            for (int e = 0; e <= 4 && inside; ++e) {
+                const auto f = detail::frame_at(*w, e0 + (e1 - e0) * e / 4.0);
+                for (int c = 0; c <= 4 && inside; ++c) {
+                    const double x = cs.hinge_chord_fraction + (1.0 - cs.hinge_chord_fraction) * c / 4.0;
+                    for (double up : {-0.06, 0.06})
+                        inside = inside && inside_fuselage(g.fuselage, f.at(x, up));
+                }
+            }
+            if (inside)
+                fail_key(a, key + ".span_fraction", fmt::format("[{}, {}]", e0, e1),
+                         fmt::format("puts control surface '{}' inside the fuselage (no wetted "
+                                     "face)",
+                                     cs.name),
+                         "a span range on the exposed part of its surface");
+        }
         if (!(cs.hinge_chord_fraction > 0.0 && cs.hinge_chord_fraction < 0.98))
             fail_key(a, key + ".hinge_chord_fraction", fmt::format("{}", cs.hinge_chord_fraction),
                      fmt::format("puts the hinge outside its surface '{}'", cs.surface),

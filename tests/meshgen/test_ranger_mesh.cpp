@@ -33,7 +33,7 @@ fs::path scratch(const std::string& name) {
 }
 
 const aircraft::AircraftDefinition& ranger() {
-    static const auto a = aircraft::load_aircraft(std::getenv("MG_AIRCRAFT") ? std::string(std::getenv("MG_AIRCRAFT")) : test::ranger_file);
+    static const auto a = aircraft::load_aircraft(test::ranger_file);
     return a;
 }
 
@@ -46,7 +46,6 @@ Made make(meshgen::Model model, const std::string& file, double factor = 2.5) {
     meshgen::MeshOptions o;
     o.model = model;
     o.size_factor = factor;
-    if (std::getenv("MG_THREADS")) o.threads = std::atoi(std::getenv("MG_THREADS"));
     Made m;
     m.result = meshgen::generate_mesh(ranger(), o, scratch(file));
     m.mesh = mesh::read_mesh(m.result.mesh_file);
