@@ -20,8 +20,11 @@ nlohmann::json to_json(const meshgen::MeshResult& r) {
     const auto& q = r.quality;
     nlohmann::json markers = nlohmann::json::array();
     for (const auto& m : r.markers)
-        markers.push_back(
-            {{"name", m.name}, {"role", m.role}, {"faces", m.faces}, {"nodes", m.nodes}, {"area", m.area}});
+        markers.push_back({{"name", m.name},
+                           {"role", m.role},
+                           {"faces", m.faces},
+                           {"nodes", m.nodes},
+                           {"area", m.area}});
     nlohmann::json hinges = nlohmann::json::array();
     for (const auto& c : r.companion.control_surfaces)
         hinges.push_back({{"mode", c.mode},
@@ -61,7 +64,8 @@ nlohmann::json to_json(const meshgen::MeshResult& r) {
               {"moment_point", vec(ref.moment_point)}}},
             {"control_surfaces", hinges},
             {"notes", r.notes},
-            {"seconds", {{"cad", r.seconds_cad}, {"mesh", r.seconds_mesh}, {"total", r.seconds_total}}}};
+            {"seconds",
+             {{"cad", r.seconds_cad}, {"mesh", r.seconds_mesh}, {"total", r.seconds_total}}}};
 }
 
 void print_text(const meshgen::MeshResult& r) {
@@ -74,13 +78,15 @@ void print_text(const meshgen::MeshResult& r) {
                q.min_dihedral_deg, q.max_dihedral_deg, q.max_volume_ratio);
     fmt::print("slivers (a dihedral angle below {} or above {} deg): {}\n", q.sliver_min_deg,
                180.0 - q.sliver_min_deg, q.slivers);
-    fmt::print("surface closed: {} ({} open edges, {} unmarked faces)   volume positive: {} "
-               "(smallest cell {:.3g} m^3)\n",
-               q.surface_closed ? "yes" : "NO", q.open_edges, q.unmarked_faces,
-               q.volume_positive ? "yes" : "NO", q.min_cell_volume);
+    fmt::print(
+        "surface closed: {} ({} open edges, {} unmarked faces)   volume positive: {} "
+        "(smallest cell {:.3g} m^3)\n",
+        q.surface_closed ? "yes" : "NO", q.open_edges, q.unmarked_faces,
+        q.volume_positive ? "yes" : "NO", q.min_cell_volume);
     fmt::print("{:<16} {:<9} {:>9} {:>9} {:>12}\n", "marker", "role", "faces", "nodes", "area m^2");
     for (const auto& m : r.markers)
-        fmt::print("{:<16} {:<9} {:>9} {:>9} {:>12.4f}\n", m.name, m.role, m.faces, m.nodes, m.area);
+        fmt::print("{:<16} {:<9} {:>9} {:>9} {:>12.4f}\n", m.name, m.role, m.faces, m.nodes,
+                   m.area);
     fmt::print("wetted area {:.3f} m^2, body volume {:.3f} m^3\n", r.wetted_area, r.body_volume);
     for (const auto& n : r.notes) fmt::print("note: {}\n", n);
     fmt::print("time: CAD {:.1f} s, meshing {:.1f} s, total {:.1f} s\n", r.seconds_cad,
@@ -90,8 +96,9 @@ void print_text(const meshgen::MeshResult& r) {
 }  // namespace
 
 void add_mesh(CLI::App& app, Action& action) {
-    auto* cmd = app.add_subcommand("mesh", "Tetrahedral mesh of an aircraft file's shape, with its "
-                                           "companion file (markers, hinge lines, reference values)");
+    auto* cmd = app.add_subcommand("mesh",
+                                   "Tetrahedral mesh of an aircraft file's shape, with its "
+                                   "companion file (markers, hinge lines, reference values)");
     struct Opts {
         std::string aircraft, model = "half", level = "coarse", out;
         int threads = 1;
@@ -105,8 +112,9 @@ void add_mesh(CLI::App& app, Action& action) {
         ->check(CLI::IsMember({"half", "full"}));
     cmd->add_option("--level", o->level, "coarse, medium or fine (about 2.5x apart in nodes)")
         ->check(CLI::IsMember({"coarse", "medium", "fine"}));
-    cmd->add_option("--out", o->out, "Mesh file: .su2, .msh or .cgns; the companion file is "
-                                     "written beside it as NAME.mesh.yaml")
+    cmd->add_option("--out", o->out,
+                    "Mesh file: .su2, .msh or .cgns; the companion file is "
+                    "written beside it as NAME.mesh.yaml")
         ->required();
     cmd->add_option("--threads", o->threads, "Threads gmsh may use")->check(CLI::Range(1, 64));
     cmd->add_flag("--json", o->json, "Print one JSON object");

@@ -35,13 +35,16 @@ void write_cgns(const std::filesystem::path& file, const std::vector<double>& xy
         check(cg_base_write(fn, "Base", 3, 3, &base), file, "base");
         const auto n = static_cast<cgsize_t>(xyz.size() / 3);
         cgsize_t size[3] = {n, static_cast<cgsize_t>(tets.size()), 0};
-        check(cg_zone_write(fn, base, "fluid", size, CGNS_ENUMV(Unstructured), &zone), file, "zone");
+        check(cg_zone_write(fn, base, "fluid", size, CGNS_ENUMV(Unstructured), &zone), file,
+              "zone");
         std::vector<double> c(static_cast<std::size_t>(n));
         const char* names[3] = {"CoordinateX", "CoordinateY", "CoordinateZ"};
         for (int d = 0; d < 3; ++d) {
-            for (std::size_t i = 0; i < c.size(); ++i) c[i] = xyz[3 * i + static_cast<std::size_t>(d)];
-            check(cg_coord_write(fn, base, zone, CGNS_ENUMV(RealDouble), names[d], c.data(), &coord),
-                  file, "coordinates");
+            for (std::size_t i = 0; i < c.size(); ++i)
+                c[i] = xyz[3 * i + static_cast<std::size_t>(d)];
+            check(
+                cg_coord_write(fn, base, zone, CGNS_ENUMV(RealDouble), names[d], c.data(), &coord),
+                file, "coordinates");
         }
         std::vector<cgsize_t> conn;
         conn.reserve(tets.size() * 4);
@@ -49,8 +52,8 @@ void write_cgns(const std::filesystem::path& file, const std::vector<double>& xy
             for (auto v : t) conn.push_back(static_cast<cgsize_t>(v + 1));
         cgsize_t next = 1;
         const auto n_tets = static_cast<cgsize_t>(tets.size());
-        check(cg_section_write(fn, base, zone, "cells", CGNS_ENUMV(TETRA_4), next, next + n_tets - 1,
-                               0, conn.data(), &section),
+        check(cg_section_write(fn, base, zone, "cells", CGNS_ENUMV(TETRA_4), next,
+                               next + n_tets - 1, 0, conn.data(), &section),
               file, "cells");
         next += n_tets;
         std::size_t offset = 0;
@@ -61,8 +64,8 @@ void write_cgns(const std::filesystem::path& file, const std::vector<double>& xy
             for (std::size_t f = offset; f < offset + count; ++f)
                 for (auto v : tris[f]) conn.push_back(static_cast<cgsize_t>(v + 1));
             const cgsize_t first = next, last = next + static_cast<cgsize_t>(count) - 1;
-            check(cg_section_write(fn, base, zone, markers[m].first.c_str(), CGNS_ENUMV(TRI_3), first,
-                                   last, 0, conn.data(), &section),
+            check(cg_section_write(fn, base, zone, markers[m].first.c_str(), CGNS_ENUMV(TRI_3),
+                                   first, last, 0, conn.data(), &section),
                   file, "marker faces");
             const cgsize_t range[2] = {first, last};
             const auto type = roles[m] == "farfield"   ? CGNS_ENUMV(BCFarfield)

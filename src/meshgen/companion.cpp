@@ -17,16 +17,20 @@ std::string_view to_string(Model m) {
 }
 std::string_view to_string(Level l) {
     switch (l) {
-        case Level::coarse: return "coarse";
-        case Level::medium: return "medium";
-        case Level::fine: return "fine";
+        case Level::coarse:
+            return "coarse";
+        case Level::medium:
+            return "medium";
+        case Level::fine:
+            return "fine";
     }
     return "coarse";
 }
 Model parse_model(std::string_view text, std::string_view what) {
     if (text == "half") return Model::half;
     if (text == "full") return Model::full;
-    throw InputError(fmt::format("{}: value '{}' is not a model; expected half or full", what, text));
+    throw InputError(
+        fmt::format("{}: value '{}' is not a model; expected half or full", what, text));
 }
 Level parse_level(std::string_view text, std::string_view what) {
     if (text == "coarse") return Level::coarse;
@@ -61,7 +65,8 @@ std::string vec(const Eigen::Vector3d& v) {
 
 std::string format_companion(const Companion& c) {
     std::string s;
-    s += "# MANTA mesh companion file (docs/formats.md#mesh-companion-file), written by `manta mesh`.\n";
+    s += "# MANTA mesh companion file (docs/formats.md#mesh-companion-file), written by `manta "
+         "mesh`.\n";
     s += "# Geometry axes of the aircraft file: x aft, y right, z up, metres.\n";
     s += "schema_version: 1\n";
     s += fmt::format("mesh: {}\n", quote(c.mesh));
@@ -72,7 +77,8 @@ std::string format_companion(const Companion& c) {
     s += "# Marker roles as in the CFD configuration's `markers:` (farfield, wall, symmetry).\n";
     s += "markers:\n";
     for (const auto& m : c.markers) s += fmt::format("  {}: {}\n", m.name, m.role);
-    s += "# Reference values of the whole aircraft's coefficients. Half model: `area` is half the\n";
+    s +=
+        "# Reference values of the whole aircraft's coefficients. Half model: `area` is half the\n";
     s += "# aircraft's reference area, so the half model's forces over q*area are the whole\n";
     s += "# aircraft's CL, CD, Cm (forces are not doubled).\n";
     s += "reference:\n";

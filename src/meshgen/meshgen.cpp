@@ -16,9 +16,9 @@
 #include <numbers>
 #include <set>
 
+#include "cgns_writer.hpp"
 #include "manta/core/error.hpp"
 #include "manta/meshgen/meshgen.hpp"
-#include "cgns_writer.hpp"
 #include "shapes.hpp"
 
 namespace manta::meshgen {
@@ -78,8 +78,8 @@ double triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                      w = (a - q).cross(b - q).dot(n);
         if (u >= 0.0 && v >= 0.0 && w >= 0.0) return (p - q).norm();
     }
-    return std::min({segment_distance(p, a, b), segment_distance(p, b, c),
-                     segment_distance(p, c, a)});
+    return std::min(
+        {segment_distance(p, a, b), segment_distance(p, b, c), segment_distance(p, c, a)});
 }
 
 /// A place with its own mesh size: h(x) = h0 + growth * max(0, distance(x) - radius).
@@ -126,8 +126,10 @@ Sizes sizes_for(Level level, double factor) {
     s.surface *= f;
     s.fuselage *= f;
     s.nose *= f;
-    // The far field keeps the level's size only: a test's coarser factor would facet the sphere.
+    // The far field and the growth keep the level's factor only: a test's coarser factor would
+    // facet the sphere and coarsen the volume twice.
     s.farfield *= f / factor;
+    s.growth *= f / factor;
     return s;
 }
 
@@ -174,9 +176,12 @@ int ruled_box(const std::array<std::array<Eigen::Vector3d, 4>, 2>& corners) {
     std::vector<int> wires;
     for (const auto& q : corners) {
         std::array<int, 4> p{};
-        for (int k = 0; k < 4; ++k) p[static_cast<std::size_t>(k)] = add_point(q[static_cast<std::size_t>(k)]);
+        for (int k = 0; k < 4; ++k)
+            p[static_cast<std::size_t>(k)] = add_point(q[static_cast<std::size_t>(k)]);
         std::vector<int> lines;
-        for (int k = 0; k < 4; ++k) lines.push_back(occ::addLine(p[static_cast<std::size_t>(k)], p[static_cast<std::size_t>((k + 1) % 4)]));
+        for (int k = 0; k < 4; ++k)
+            lines.push_back(occ::addLine(p[static_cast<std::size_t>(k)],
+                                         p[static_cast<std::size_t>((k + 1) % 4)]));
         wires.push_back(occ::addWire(lines));
     }
     gmsh::vectorpair out;
@@ -297,11 +302,15 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
             std::vector<Piece> merged;
             gmsh::vectorpair plain_r, plain_l;
             for (const auto& p : right)
-                if (p.region < 0) plain_r.emplace_back(3, p.volume);
-                else merged.push_back(p);
+                if (p.region < 0)
+                    plain_r.emplace_back(3, p.volume);
+                else
+                    merged.push_back(p);
             for (const auto& p : left)
-                if (p.region < 0) plain_l.emplace_back(3, p.volume);
-                else merged.push_back(p);
+                if (p.region < 0)
+                    plain_l.emplace_back(3, p.volume);
+                else
+                    merged.push_back(p);
             std::vector<gmsh::vectorpair> map;
             occ::fuse(plain_r, plain_l, out, map);
             for (const auto& [d, t] : out)
@@ -346,9 +355,10 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         try {
             occ::fuse(object, tools, body, map);
         } catch (const std::exception& e) {
-            throw NumericalError(fmt::format("meshgen: the fusion of the aircraft's parts failed "
-                                             "({}); the parts may self-intersect",
-                                             e.what()));
+            throw NumericalError(
+                fmt::format("meshgen: the fusion of the aircraft's parts failed "
+                            "({}); the parts may self-intersect",
+                            e.what()));
         }
     } else {
         body = object;
@@ -370,12 +380,13 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
     cad.radius = o.farfield_spans * a.reference.span;
     const double size = std::max({bx1 - bx0, by1 - by0, bz1 - bz0});
     if (!(cad.radius > 1.5 * size))
-        throw InputError(fmt::format("meshgen: far-field radius {} m ({} spans) is not beyond the "
-                                     "aircraft ({} m across); expected more spans",
-                                     cad.radius, o.farfield_spans, size));
-    const int domain = occ::addSphere(cad.centre.x(), 0.0, cad.centre.z(), cad.radius, -1,
-                                      -std::numbers::pi / 2, std::numbers::pi / 2,
-                                      half ? std::numbers::pi : 2 * std::numbers::pi);
+        throw InputError(
+            fmt::format("meshgen: far-field radius {} m ({} spans) is not beyond the "
+                        "aircraft ({} m across); expected more spans",
+                        cad.radius, o.farfield_spans, size));
+    const int domain =
+        occ::addSphere(cad.centre.x(), 0.0, cad.centre.z(), cad.radius, -1, -std::numbers::pi / 2,
+                       std::numbers::pi / 2, half ? std::numbers::pi : 2 * std::numbers::pi);
     gmsh::vectorpair fluid;
     {
         std::vector<gmsh::vectorpair> map;
@@ -438,9 +449,10 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         const double extent = std::max({xmax - xmin, ymax - ymin, zmax - zmin});
         std::string marker = "wall";
         if (extent > tol_far) {
-            marker = (half && std::abs(ymin) < 1e-7 * cad.radius && std::abs(ymax) < 1e-7 * cad.radius)
-                         ? "symmetry"
-                         : "farfield";
+            marker =
+                (half && std::abs(ymin) < 1e-7 * cad.radius && std::abs(ymax) < 1e-7 * cad.radius)
+                    ? "symmetry"
+                    : "farfield";
         } else {
             double cx = 0, cy = 0, cz = 0;
             occ::getCenterOfMass(2, tag, cx, cy, cz);
@@ -458,13 +470,14 @@ Cad build_cad(const aircraft::AircraftDefinition& a, const MeshOptions& o) {
         if (half && r.mirrored) continue;
         if (!cad.marker_faces.count(r.marker)) {
             const auto& cs = g.control_surfaces[r.control_index];
-            detail::fail_key(a, fmt::format("geometry.control_surfaces[{}].span_fraction", r.control_index),
-                             fmt::format("[{}, {}]", cs.span_fraction[0], cs.span_fraction[1]),
-                             fmt::format("puts control surface '{}' where it has no wetted face "
-                                         "(inside other parts of the aircraft, or outside its "
-                                         "surface '{}')",
-                                         cs.name, cs.surface),
-                             "a span range on the exposed part of its surface");
+            detail::fail_key(
+                a, fmt::format("geometry.control_surfaces[{}].span_fraction", r.control_index),
+                fmt::format("[{}, {}]", cs.span_fraction[0], cs.span_fraction[1]),
+                fmt::format("puts control surface '{}' where it has no wetted face "
+                            "(inside other parts of the aircraft, or outside its "
+                            "surface '{}')",
+                            cs.name, cs.surface),
+                "a span range on the exposed part of its surface");
         }
     }
     // Drop markers without faces (the left copies in the half model).
@@ -578,14 +591,16 @@ MeshResult generate_mesh(const aircraft::AircraftDefinition& a, const MeshOption
                          const std::filesystem::path& out) {
     const auto t0 = Clock::now();
     if (!(o.farfield_spans > 0.0) || !(o.size_factor > 0.0) || !std::isfinite(o.size_factor))
-        throw InputError(fmt::format("meshgen: farfield_spans {} and size_factor {}; expected "
-                                     "positive numbers",
-                                     o.farfield_spans, o.size_factor));
+        throw InputError(
+            fmt::format("meshgen: farfield_spans {} and size_factor {}; expected "
+                        "positive numbers",
+                        o.farfield_spans, o.size_factor));
     const std::string ext = out.extension().string();
     if (ext != ".su2" && ext != ".msh" && ext != ".cgns")
-        throw InputError(fmt::format("--out: value '{}' has no mesh extension; expected a name "
-                                     "ending in .su2, .msh or .cgns",
-                                     out.string()));
+        throw InputError(
+            fmt::format("--out: value '{}' has no mesh extension; expected a name "
+                        "ending in .su2, .msh or .cgns",
+                        out.string()));
     check_buildable(a);
     const bool half = o.model == Model::half;
     MeshResult res;
@@ -623,7 +638,8 @@ MeshResult generate_mesh(const aircraft::AircraftDefinition& a, const MeshOption
     try {
         gmsh::model::mesh::generate(3);
     } catch (const std::exception& e) {
-        throw NumericalError(fmt::format("meshgen: gmsh failed to mesh the aircraft ({})", e.what()));
+        throw NumericalError(
+            fmt::format("meshgen: gmsh failed to mesh the aircraft ({})", e.what()));
     } catch (...) {
         throw NumericalError("meshgen: gmsh failed to mesh the aircraft (unknown error)");
     }
@@ -636,7 +652,8 @@ MeshResult generate_mesh(const aircraft::AircraftDefinition& a, const MeshOption
     std::size_t max_tag = 0;
     for (auto t : node_tags) max_tag = std::max(max_tag, t);
     std::vector<long long> index(max_tag + 1, -1);
-    for (std::size_t i = 0; i < node_tags.size(); ++i) index[node_tags[i]] = static_cast<long long>(i);
+    for (std::size_t i = 0; i < node_tags.size(); ++i)
+        index[node_tags[i]] = static_cast<long long>(i);
     std::vector<std::array<long long, 4>> tets;
     for (int v : cad.fluid) {
         std::vector<std::size_t> et, nt;
@@ -676,8 +693,8 @@ MeshResult generate_mesh(const aircraft::AircraftDefinition& a, const MeshOption
     std::error_code ec;
     const auto dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
     std::filesystem::create_directories(dir, ec);
-    const auto tmp = dir / fmt::format(".{}.tmp{}{}", out.stem().string(),
-                                       static_cast<long>(getpid()), ext);
+    const auto tmp =
+        dir / fmt::format(".{}.tmp{}{}", out.stem().string(), static_cast<long>(getpid()), ext);
     gmsh::option::setNumber("Mesh.SaveAll", 0);
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
     gmsh::option::setNumber("Mesh.Binary", 0);

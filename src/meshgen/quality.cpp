@@ -53,7 +53,8 @@ QualityReport assess_quality(const std::vector<double>& xyz,
     q.volume_positive = !tets.empty();
     std::vector<double> vol(tets.size());
     // Local faces opposite each node, and the two faces at each of the six edges.
-    static constexpr std::array<std::array<int, 3>, 4> tf{{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
+    static constexpr std::array<std::array<int, 3>, 4> tf{
+        {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
     static constexpr std::array<std::array<int, 2>, 6> edge_faces{
         {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}}};  // edges 01, 02, 03, 12, 13, 23
     const double rad = 180.0 / std::numbers::pi;
@@ -96,7 +97,8 @@ QualityReport assess_quality(const std::vector<double>& xyz,
             const Key3 k = sorted(tets[c][f[0]], tets[c][f[1]], tets[c][f[2]]);
             auto [it, fresh] = owner.emplace(k, static_cast<long long>(c));
             if (!fresh) {
-                const double a = std::abs(vol[c]), b = std::abs(vol[static_cast<std::size_t>(it->second)]);
+                const double a = std::abs(vol[c]),
+                             b = std::abs(vol[static_cast<std::size_t>(it->second)]);
                 if (a > 0.0 && b > 0.0)
                     q.max_volume_ratio = std::max(q.max_volume_ratio, std::max(a / b, b / a));
                 it->second = -1;  // interior

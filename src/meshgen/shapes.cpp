@@ -167,9 +167,9 @@ bool ControlRegion::contains(const Eigen::Vector3d& p, double tol) const {
     const double lo = std::min(s0, s1), hi = std::max(s0, s1);
     if (s < lo + tol || s > hi - tol) return false;
     const double t = (s - s0) / (s1 - s0);
-    const Eigen::Vector3d h = (1.0 - t) * corners[0][0] + t * corners[1][0];      // hinge-low
-    const Eigen::Vector3d hh = (1.0 - t) * corners[0][1] + t * corners[1][1];     // hinge-high
-    const Eigen::Vector3d al = (1.0 - t) * corners[0][3] + t * corners[1][3];     // aft-low
+    const Eigen::Vector3d h = (1.0 - t) * corners[0][0] + t * corners[1][0];   // hinge-low
+    const Eigen::Vector3d hh = (1.0 - t) * corners[0][1] + t * corners[1][1];  // hinge-high
+    const Eigen::Vector3d al = (1.0 - t) * corners[0][3] + t * corners[1][3];  // aft-low
     const Eigen::Vector3d u = (hh - h), a = (al - h);
     const Eigen::Vector3d d = p - h;
     const double along = d.dot(a.normalized()), up = d.dot(u.normalized());
@@ -261,12 +261,13 @@ void check_buildable(const aircraft::AircraftDefinition& a) {
             const auto& s = w.sections[j];
             if (j > 0 && !(w.spanwise(s) > w.spanwise(w.sections[j - 1]) + 1e-9)) {
                 const auto& p = s.leading_edge;
-                fail_key(a, detail::section_key(i, j) + ".leading_edge",
-                         fmt::format("[{}, {}, {}]", p.x(), p.y(), p.z()),
-                         fmt::format("is out of order: its spanwise coordinate ({}) does not exceed "
-                                     "that of the section before",
-                                     w.vertical ? "z" : "y"),
-                         "sections root to tip, the spanwise coordinate strictly increasing");
+                fail_key(
+                    a, detail::section_key(i, j) + ".leading_edge",
+                    fmt::format("[{}, {}, {}]", p.x(), p.y(), p.z()),
+                    fmt::format("is out of order: its spanwise coordinate ({}) does not exceed "
+                                "that of the section before",
+                                w.vertical ? "z" : "y"),
+                    "sections root to tip, the spanwise coordinate strictly increasing");
             }
             if (!(s.chord > 0.0) || !std::isfinite(s.chord))
                 fail_key(a, detail::section_key(i, j) + ".chord", fmt::format("{}", s.chord),
@@ -321,7 +322,8 @@ void check_buildable(const aircraft::AircraftDefinition& a) {
             const auto& s0 = w.sections[j];
             const auto& s1 = w.sections[j + 1];
             const double ds = w.spanwise(s1) - w.spanwise(s0);
-            const double dte = std::abs(s1.chord * std::sin(s1.twist) - s0.chord * std::sin(s0.twist));
+            const double dte =
+                std::abs(s1.chord * std::sin(s1.twist) - s0.chord * std::sin(s0.twist));
             if (ds > 0.0 && dte > 4.0 * ds)
                 fail_key(a, detail::section_key(i, j + 1) + ".twist",
                          fmt::format("{:.4g} deg", s1.twist * 180.0 / M_PI),
@@ -336,16 +338,19 @@ void check_buildable(const aircraft::AircraftDefinition& a) {
     for (std::size_t j = 0; j < st.size(); ++j) {
         if (j == 0 || j + 1 == st.size()) continue;
         if (!(st[j].width > 0.0) || !(st[j].height > 0.0))
-            fail_key(a, fmt::format("geometry.fuselage.{}[{}]", st[j].width > 0.0 ? "height" : "width", j),
-                     fmt::format("{}", st[j].width > 0.0 ? st[j].height : st[j].width),
-                     "is a degenerate cross-section between the ends of the fuselage",
-                     "a positive width and height (only the first and last stations may be 0)");
+            fail_key(
+                a,
+                fmt::format("geometry.fuselage.{}[{}]", st[j].width > 0.0 ? "height" : "width", j),
+                fmt::format("{}", st[j].width > 0.0 ? st[j].height : st[j].width),
+                "is a degenerate cross-section between the ends of the fuselage",
+                "a positive width and height (only the first and last stations may be 0)");
     }
     for (std::size_t k = 0; k < g.control_surfaces.size(); ++k) {
         const auto& cs = g.control_surfaces[k];
         const std::string key = fmt::format("geometry.control_surfaces[{}]", k);
         const auto* w = g.find_surface(cs.surface);
-        if (!w) fail_key(a, key + ".surface", cs.surface, "names no lifting surface", "a surface name");
+        if (!w)
+            fail_key(a, key + ".surface", cs.surface, "names no lifting surface", "a surface name");
         const double e0 = cs.span_fraction[0], e1 = cs.span_fraction[1];
         if (!(e0 >= 0.0 && e1 <= 1.0 && e0 < e1))
             fail_key(a, key + ".span_fraction", fmt::format("[{}, {}]", e0, e1),
@@ -358,7 +363,8 @@ void check_buildable(const aircraft::AircraftDefinition& a) {
             for (int e = 0; e <= 4 && inside; ++e) {
                 const auto f = detail::frame_at(*w, e0 + (e1 - e0) * e / 4.0);
                 for (int c = 0; c <= 4 && inside; ++c) {
-                    const double x = cs.hinge_chord_fraction + (1.0 - cs.hinge_chord_fraction) * c / 4.0;
+                    const double x =
+                        cs.hinge_chord_fraction + (1.0 - cs.hinge_chord_fraction) * c / 4.0;
                     for (double up : {-0.06, 0.06})
                         inside = inside && inside_fuselage(g.fuselage, f.at(x, up));
                 }

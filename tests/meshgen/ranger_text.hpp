@@ -9,7 +9,8 @@
 
 namespace manta::test {
 
-inline const std::string ranger_file = std::string(MANTA_SOURCE_DIR) + "/examples/ranger2000/aircraft.yaml";
+inline const std::string ranger_file =
+    std::string(MANTA_SOURCE_DIR) + "/examples/ranger2000/aircraft.yaml";
 
 inline std::string ranger_text() {
     std::ifstream in(ranger_file);

@@ -25,8 +25,8 @@ Companion sample() {
     c.aircraft_name = "Ranger 2000";
     c.model = Model::half;
     c.level = Level::medium;
-    c.markers = {{"wall", "wall"}, {"elevator", "wall"}, {"farfield", "farfield"},
-                 {"symmetry", "symmetry"}};
+    c.markers = {
+        {"wall", "wall"}, {"elevator", "wall"}, {"farfield", "farfield"}, {"symmetry", "symmetry"}};
     c.reference.area = 7.75;
     c.reference.aircraft_area = 15.5;
     c.reference.chord = 1.545;
@@ -46,7 +46,8 @@ Companion sample() {
 }
 
 fs::path scratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("manta-companion-" + std::to_string(getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("manta-companion-" + std::to_string(getpid()));
     fs::create_directories(dir);
     return dir / name;
 }

@@ -22,7 +22,8 @@ using manta::test::ranger_text;
 using manta::test::replaced;
 
 fs::path scratch_dir() {
-    const fs::path dir = fs::temp_directory_path() / ("manta-meshgen-err-" + std::to_string(getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("manta-meshgen-err-" + std::to_string(getpid()));
     fs::create_directories(dir);
     return dir;
 }
@@ -54,7 +55,8 @@ std::string error_of(const std::string& text, bool mesh = false) {
 }
 
 TEST(GeometryErrors, SectionsOutOfOrder) {
-    const auto msg = error_of(replaced(ranger_text(), "[4.6546, 5.23, 0.27409]", "[4.6546, -1.0, 0.27409]"));
+    const auto msg =
+        error_of(replaced(ranger_text(), "[4.6546, 5.23, 0.27409]", "[4.6546, -1.0, 0.27409]"));
     EXPECT_NE(msg.find("lifting_surfaces[0].sections[1].leading_edge"), std::string::npos) << msg;
 }
 
@@ -73,14 +75,15 @@ TEST(GeometryErrors, OverlappingTwinFinsSelfIntersect) {
 TEST(GeometryErrors, ControlSurfaceInsideTheFuselage) {
     // Ailerons over 0-8 % of the semi-span (y < 0.42 m) lie inside the fuselage (half width
     // 0.55-0.65 m beside the wing root): no wetted face.
-    const auto msg =
-        error_of(replaced(ranger_text(), "span_fraction: [0.55, 0.95]", "span_fraction: [0.0, 0.08]"));
+    const auto msg = error_of(
+        replaced(ranger_text(), "span_fraction: [0.55, 0.95]", "span_fraction: [0.0, 0.08]"));
     EXPECT_NE(msg.find("geometry.control_surfaces[1].span_fraction"), std::string::npos) << msg;
     EXPECT_NE(msg.find("[0, 0.08]"), std::string::npos) << msg;
 }
 
 TEST(GeometryErrors, ControlSurfaceBeyondItsSurface) {
-    const auto msg = error_of(replaced(ranger_text(), "span_fraction: [0.55, 0.95]", "span_fraction: [0.55, 1.2]"));
+    const auto msg = error_of(
+        replaced(ranger_text(), "span_fraction: [0.55, 0.95]", "span_fraction: [0.55, 1.2]"));
     EXPECT_NE(msg.find("control_surfaces[1].span_fraction"), std::string::npos) << msg;
 }
 
@@ -100,9 +103,11 @@ TEST(GeometryErrors, DegenerateAirfoil) {
             f << x << " " << -0.001 * std::sin(std::numbers::pi * x) << "\n";
         }
     }
-    const auto msg = error_of(replaced(ranger_text(), "airfoil: NACA 0010\n        - leading_edge: [8.20",
-                                       "airfoil_file: " + foil.string() + "\n        - leading_edge: [8.20"));
-    EXPECT_NE(msg.find("geometry.lifting_surfaces[2].sections[0].airfoil_file"), std::string::npos) << msg;
+    const auto msg =
+        error_of(replaced(ranger_text(), "airfoil: NACA 0010\n        - leading_edge: [8.20",
+                          "airfoil_file: " + foil.string() + "\n        - leading_edge: [8.20"));
+    EXPECT_NE(msg.find("geometry.lifting_surfaces[2].sections[0].airfoil_file"), std::string::npos)
+        << msg;
     EXPECT_NE(msg.find("degenerate"), std::string::npos) << msg;
     EXPECT_NE(msg.find("thin.dat"), std::string::npos) << msg;
 }

@@ -20,19 +20,20 @@ using namespace manta;
 
 meshgen::MeshResult level(meshgen::Level l, meshgen::Model model = meshgen::Model::half) {
     static const auto a = aircraft::load_aircraft(test::ranger_file);
-    const fs::path dir = fs::temp_directory_path() / ("manta-meshgen-levels-" + std::to_string(getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("manta-meshgen-levels-" + std::to_string(getpid()));
     fs::create_directories(dir);
     meshgen::MeshOptions o;
     o.level = l;
     o.model = model;
     auto r = meshgen::generate_mesh(a, o, dir / (std::string(meshgen::to_string(l)) + ".su2"));
     const auto& q = r.quality;
-    std::printf("%s %s: %lld nodes, %lld cells, dihedral %.2f-%.2f deg, %lld slivers, volume "
-                "ratio %.1f, closed %d, positive %d, CAD %.1f s, mesh %.1f s, total %.1f s\n",
-                std::string(meshgen::to_string(model)).c_str(),
-                std::string(meshgen::to_string(l)).c_str(), q.nodes, q.cells, q.min_dihedral_deg,
-                q.max_dihedral_deg, q.slivers, q.max_volume_ratio, q.surface_closed,
-                q.volume_positive, r.seconds_cad, r.seconds_mesh, r.seconds_total);
+    std::printf(
+        "%s %s: %lld nodes, %lld cells, dihedral %.2f-%.2f deg, %lld slivers, volume "
+        "ratio %.1f, closed %d, positive %d, CAD %.1f s, mesh %.1f s, total %.1f s\n",
+        std::string(meshgen::to_string(model)).c_str(), std::string(meshgen::to_string(l)).c_str(),
+        q.nodes, q.cells, q.min_dihedral_deg, q.max_dihedral_deg, q.slivers, q.max_volume_ratio,
+        q.surface_closed, q.volume_positive, r.seconds_cad, r.seconds_mesh, r.seconds_total);
     EXPECT_TRUE(q.surface_closed);
     EXPECT_TRUE(q.volume_positive);
     return r;

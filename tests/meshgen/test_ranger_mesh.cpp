@@ -1,9 +1,9 @@
 /// @file test_ranger_mesh.cpp
-/// Meshes of the Ranger 2000 (examples/ranger2000/aircraft.yaml) at sizes 2.5x the coarse level
-/// (seconds each): the half and full models are closed with positive volumes and carry the
-/// expected markers; the files read back with MANTA's readers carry the same markers; the hinge
-/// lines of the companion file lie on their markers' nodes and agree with meshmotion's; the marker
-/// areas and the span compare with the aircraft file's values.
+/// The half Ranger 2000 (examples/ranger2000/aircraft.yaml) meshed at sizes 2.5x the coarse
+/// level (about 20 s, mostly the CAD): closed with positive volumes, with the expected markers; the
+/// files read back with MANTA's readers carry the same markers; the hinge lines of the companion
+/// file lie on their markers' nodes and agree with meshmotion's; the marker areas and the span
+/// compare with the aircraft file's values.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 #include <set>
 
 #include "manta/aircraft/aircraft.hpp"
@@ -75,11 +76,11 @@ std::vector<Eigen::Vector3d> marker_nodes(const mesh::Mesh& m, const std::string
 
 void expect_sound(const meshgen::MeshResult& r) {
     const auto& q = r.quality;
-    std::printf("%s: %lld nodes, %lld cells, dihedral %.2f-%.2f deg, %lld slivers, volume ratio "
-                "%.1f, CAD %.1f s, mesh %.1f s, total %.1f s\n",
-                r.mesh_file.filename().c_str(), q.nodes, q.cells, q.min_dihedral_deg,
-                q.max_dihedral_deg, q.slivers, q.max_volume_ratio, r.seconds_cad, r.seconds_mesh,
-                r.seconds_total);
+    std::printf(
+        "%s: %lld nodes, %lld cells, dihedral %.2f-%.2f deg, %lld slivers, volume ratio "
+        "%.1f, CAD %.1f s, mesh %.1f s, total %.1f s\n",
+        r.mesh_file.filename().c_str(), q.nodes, q.cells, q.min_dihedral_deg, q.max_dihedral_deg,
+        q.slivers, q.max_volume_ratio, r.seconds_cad, r.seconds_mesh, r.seconds_total);
     EXPECT_TRUE(q.surface_closed) << q.open_edges << " open edges, " << q.unmarked_faces
                                   << " unmarked faces";
     EXPECT_TRUE(q.volume_positive) << "smallest cell " << q.min_cell_volume;
@@ -92,8 +93,8 @@ void expect_sound(const meshgen::MeshResult& r) {
 TEST(RangerMesh, HalfModelMarkersAndChecks) {
     const auto& m = half_su2();
     expect_sound(m.result);
-    const std::set<std::string> expected{"wall", "elevator", "aileron_right", "rudder", "farfield",
-                                         "symmetry"};
+    const std::set<std::string> expected{"wall",   "elevator", "aileron_right",
+                                         "rudder", "farfield", "symmetry"};
     EXPECT_EQ(names(m.mesh.markers()), expected);
     std::set<std::string> in_companion;
     for (const auto& r : m.result.companion.markers) in_companion.insert(r.name);
@@ -195,55 +196,16 @@ TEST(RangerMesh, CompanionFileBesideTheMesh) {
     EXPECT_NEAR(c.reference.moment_point.x(), 4.911, 0.001);  // 25 % MAC
     EXPECT_NEAR(c.reference.cg.x(), 4.903, 0.001);            // mtow
     // meshmotion reads the list as it is.
-    const auto node = core::ConfigNode::parse_file(m.result.companion_file).child("control_surfaces");
+    const auto node =
+        core::ConfigNode::parse_file(m.result.companion_file).child("control_surfaces");
     const auto specs = meshmotion::parse_control_surfaces(node);
     EXPECT_EQ(specs.size(), 3u);
     for (const auto& s : specs) EXPECT_GE(m.mesh.find_marker(s.marker), 0) << s.marker;
     // Roles: one far field, one symmetry plane, the rest walls.
     for (const auto& r : c.markers)
-        EXPECT_EQ(r.role, r.name == "farfield" ? "farfield" : r.name == "symmetry" ? "symmetry" : "wall");
-}
-
-TEST(RangerMesh, FullModel) {
-    const Made m = make(meshgen::Model::full, "full.msh", 3.0);
-    expect_sound(m.result);
-    const std::set<std::string> expected{"wall",          "elevator_right", "elevator_left",
-                                         "aileron_right", "aileron_left",   "rudder",
-                                         "farfield"};
-    EXPECT_EQ(names(m.mesh.markers()), expected);
-    const auto& comp = m.result.companion;
-    EXPECT_DOUBLE_EQ(comp.reference.area, 15.5);
-    ASSERT_EQ(comp.control_surfaces.size(), 5u);
-    for (const auto& cs : comp.control_surfaces) {
-        if (cs.marker == "aileron_left") {
-            EXPECT_DOUBLE_EQ(cs.gain, 1.0);
-        }
-        if (cs.marker == "aileron_right") {
-            EXPECT_DOUBLE_EQ(cs.gain, -1.0);
-        }
-        // Horizontal hinges run toward +y, the rudder's toward -z.
-        if (cs.mode == "rudder") {
-            EXPECT_LT(cs.hinge[1].z(), cs.hinge[0].z());
-        } else {
-            EXPECT_GT(cs.hinge[1].y(), cs.hinge[0].y());
-        }
-    }
-    double ymin = 1e9, ymax = -1e9;
-    for (const auto& p : marker_nodes(m.mesh, "wall")) {
-        ymin = std::min(ymin, p.y());
-        ymax = std::max(ymax, p.y());
-    }
-    EXPECT_NEAR(ymax, 5.23, 0.05);
-    EXPECT_NEAR(ymin, -5.23, 0.05);
-}
-
-TEST(RangerMesh, CgnsFileReadsBack) {
-    const Made m = make(meshgen::Model::half, "half.cgns", 4.0);
-    expect_sound(m.result);
-    EXPECT_EQ(m.mesh.n_nodes(), m.result.quality.nodes);
-    const std::set<std::string> expected{"wall", "elevator", "aileron_right", "rudder", "farfield",
-                                         "symmetry"};
-    EXPECT_EQ(names(m.mesh.markers()), expected);
+        EXPECT_EQ(r.role, r.name == "farfield"   ? "farfield"
+                          : r.name == "symmetry" ? "symmetry"
+                                                 : "wall");
 }
 
 }  // namespace

@@ -54,12 +54,12 @@ struct MeshOptions {
 /// reads it: positive local deflection rotates the surface right-handedly about
 /// hinge[1] - hinge[0] (trailing edge down on horizontal surfaces, toward -y on fins).
 struct CompanionControlSurface {
-    std::string mode;            ///< the driving control: elevator, aileron, rudder
-    std::string marker;          ///< wall marker of the moving surface
+    std::string mode;                        ///< the driving control: elevator, aileron, rudder
+    std::string marker;                      ///< wall marker of the moving surface
     std::array<Eigen::Vector3d, 2> hinge{};  ///< inboard, outboard point [m] (ordered as above)
-    double gain = 1.0;           ///< local deflection = gain * control
-    std::string control_surface; ///< name in the aircraft file
-    std::string side;            ///< "right" (defined copy), "left" (mirror) or "" (one copy)
+    double gain = 1.0;                       ///< local deflection = gain * control
+    std::string control_surface;             ///< name in the aircraft file
+    std::string side;  ///< "right" (defined copy), "left" (mirror) or "" (one copy)
 };
 
 /// A mesh marker and its boundary role (euler::BoundaryKind names: wall, farfield, symmetry).
@@ -80,14 +80,14 @@ struct CompanionReference {
     /// Moment point [m]: the aircraft file's moment reference point (that of its aerodynamic
     /// model and of the vortex lattice), geometry axes.
     Eigen::Vector3d moment_point = Eigen::Vector3d::Zero();
-    std::string cg_case;                             ///< default mass case
-    Eigen::Vector3d cg = Eigen::Vector3d::Zero();    ///< its CG, geometry axes [m]
+    std::string cg_case;                           ///< default mass case
+    Eigen::Vector3d cg = Eigen::Vector3d::Zero();  ///< its CG, geometry axes [m]
 };
 
 /// The companion file of a mesh (docs/formats.md#mesh-companion-file).
 struct Companion {
-    std::string mesh;       ///< mesh file name (as written beside the companion)
-    std::string aircraft;   ///< aircraft file it was made from
+    std::string mesh;      ///< mesh file name (as written beside the companion)
+    std::string aircraft;  ///< aircraft file it was made from
     std::string aircraft_name;
     Model model = Model::half;
     Level level = Level::coarse;
