@@ -90,7 +90,7 @@ void expect_sound(const meshgen::MeshResult& r) {
     EXPECT_GT(r.body_volume, 0.0);
 }
 
-TEST(RangerMesh, HalfModelMarkersAndChecks) {
+void check_HalfModelMarkersAndChecks() {
     const auto& m = half_su2();
     expect_sound(m.result);
     const std::set<std::string> expected{"wall",   "elevator", "aileron_right",
@@ -110,7 +110,7 @@ TEST(RangerMesh, HalfModelMarkersAndChecks) {
     EXPECT_LT(m.result.body_volume, 7.0);
 }
 
-TEST(RangerMesh, HalfModelSpanAndSymmetry) {
+void check_HalfModelSpanAndSymmetry() {
     const auto& m = half_su2();
     double ymin = 1e9, ymax = -1e9;
     for (const auto& name : {"wall", "aileron_right", "elevator", "rudder"})
@@ -123,7 +123,7 @@ TEST(RangerMesh, HalfModelSpanAndSymmetry) {
     for (const auto& p : marker_nodes(m.mesh, "symmetry")) ASSERT_NEAR(p.y(), 0.0, 1e-9);
 }
 
-TEST(RangerMesh, ControlSurfaceAreasMatchTheAircraftFile) {
+void check_ControlSurfaceAreasMatchTheAircraftFile() {
     const auto& m = half_su2();
     const auto& g = ranger().geometry;
     auto area = [&](const std::string& marker) {
@@ -146,7 +146,7 @@ TEST(RangerMesh, ControlSurfaceAreasMatchTheAircraftFile) {
     EXPECT_LT(m.result.wetted_area, 45.0);
 }
 
-TEST(RangerMesh, HingeLinesLieOnTheirMarkers) {
+void check_HingeLinesLieOnTheirMarkers() {
     const auto& m = half_su2();
     const auto& g = ranger().geometry;
     const auto& comp = m.result.companion;
@@ -183,7 +183,7 @@ TEST(RangerMesh, HingeLinesLieOnTheirMarkers) {
     }
 }
 
-TEST(RangerMesh, CompanionFileBesideTheMesh) {
+void check_CompanionFileBesideTheMesh() {
     const auto& m = half_su2();
     EXPECT_EQ(m.result.companion_file, scratch("half.mesh.yaml"));
     const auto c = meshgen::read_companion(m.result.companion_file);
@@ -206,6 +206,31 @@ TEST(RangerMesh, CompanionFileBesideTheMesh) {
         EXPECT_EQ(r.role, r.name == "farfield"   ? "farfield"
                           : r.name == "symmetry" ? "symmetry"
                                                  : "wall");
+}
+
+// One mesh for all checks (each test case of a GoogleTest binary runs in its own process under
+// ctest, which would mesh it again for each).
+TEST(RangerMesh, HalfModel) {
+    {
+        SCOPED_TRACE("HalfModelMarkersAndChecks");
+        check_HalfModelMarkersAndChecks();
+    }
+    {
+        SCOPED_TRACE("HalfModelSpanAndSymmetry");
+        check_HalfModelSpanAndSymmetry();
+    }
+    {
+        SCOPED_TRACE("ControlSurfaceAreasMatchTheAircraftFile");
+        check_ControlSurfaceAreasMatchTheAircraftFile();
+    }
+    {
+        SCOPED_TRACE("HingeLinesLieOnTheirMarkers");
+        check_HingeLinesLieOnTheirMarkers();
+    }
+    {
+        SCOPED_TRACE("CompanionFileBesideTheMesh");
+        check_CompanionFileBesideTheMesh();
+    }
 }
 
 }  // namespace
