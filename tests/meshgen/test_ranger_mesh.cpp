@@ -84,7 +84,9 @@ void expect_sound(const meshgen::MeshResult& r) {
     EXPECT_TRUE(q.surface_closed) << q.open_edges << " open edges, " << q.unmarked_faces
                                   << " unmarked faces";
     EXPECT_TRUE(q.volume_positive) << "smallest cell " << q.min_cell_volume;
-    EXPECT_GT(q.min_dihedral_deg, 0.5);
+    EXPECT_GT(q.min_dihedral_deg, 0.0);
+    // Slivers (a dihedral angle below 5 or above 175 deg): under 1 % of the cells.
+    EXPECT_LT(q.slivers, q.cells / 100);
     EXPECT_GT(q.nodes, 1000);
     // The cells fill the far field less the body.
     EXPECT_GT(r.body_volume, 0.0);
