@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
     cli::add_replay(app, action);
     cli::add_report(app, action);
     cli::add_cfd(app, action);
+    cli::add_mesh(app, action);
 
     try {
         app.parse(argc, argv);
