@@ -9,15 +9,26 @@
 ///
 /// solved by inner iterations of `PseudoTimeStep` with the extra diagonal D = 3 V / (2 dt) and
 /// source S = V (4 U^n - U^(n-1)) / (2 dt), to a residual drop and settled coefficients with a
-/// cap on the inner iterations. The mesh does not move yet (grid fluxes zero; the moving mesh
-/// adds its swept volumes, ADR 0003 item 4).
+/// cap on the inner iterations.
+///
+/// On a moving mesh (`set_moving_mesh`) each step moves the coordinates to t^(n+1), updates the
+/// dual metrics and the operators' geometry, and solves the ALE form
+///
+///   R(U) + (3 V^(n+1) U - 4 V^n U^n + V^(n-1) U^(n-1)) / (2 dt) = 0
+///
+/// with the grid fluxes g = (3/2 S(n->n+1) - 1/2 S(n-1->n)) / dt of the faces' exact swept
+/// volumes S (BDF1: V^(n+1) U - V^n U^n over dt, g = S(n->n+1) / dt), so that the discrete
+/// geometric conservation law (3 V^(n+1) - 4 V^n + V^(n-1)) / (2 dt) = sum of g holds to
+/// round-off (ADR 0003 item 4, docs/euler.md#dual-time-stepping-on-moving-meshes).
 ///
 /// Time is in the solver's units (gas.hpp): the mesh's length unit divided by the free-stream
 /// speed of sound.
 
+#include <Eigen/Core>
 #include <functional>
 
 #include "manta/euler/solver.hpp"
+#include "manta/mesh/dual.hpp"
 
 namespace manta::euler {
 
@@ -42,6 +53,33 @@ struct TimeStepRecord {
     bool converged = false;    ///< false: the inner iterations stopped at their cap
     int backoffs = 0;          ///< CFL back-offs in the step
     ForceCoefficients forces;  ///< of the new state
+    /// Moving mesh: the step's defect of the discrete geometric conservation law,
+    /// max_i |c1 V_i^(n+1) + c0 V_i^n + cm V_i^(n-1) - dt sum_faces g| over the largest dual
+    /// volume (BDF2 c = 3/2, -2, 1/2; BDF1 1, -1, 0); 0 on a fixed mesh.
+    double gcl_defect = 0;
+};
+
+/// Coordinates of the local mesh's nodes (3 x n_local, owned then ghosts, the mesh's axes and
+/// length unit) at time t (solver units); `step` is the index of the time level (n + 1 for the
+/// step from n), for messages. Resize `x` only when its size is wrong.
+using CoordinatesAt = std::function<void(double t, long step, Eigen::Matrix3Xd& x)>;
+
+/// The mesh a moving-mesh solver moves: the domain's own mesh and metrics, writable.
+struct MovingMesh {
+    mesh::Mesh* mesh = nullptr;
+    mesh::DualMetrics* dual = nullptr;
+    CoordinatesAt coordinates;
+};
+
+/// Everything of the time stepping besides U^n that decides later steps: a solver given it back
+/// (`restore`) continues as the uninterrupted one, bit for bit (checkpoints).
+struct TimeLevels {
+    int steps = 0;                    ///< physical steps taken (n)
+    double cfl = 0;                   ///< the next step's first CFL number
+    NodeStates U_prev;                ///< U^(n-1) (empty before the first step)
+    Eigen::Matrix3Xd x;               ///< moving mesh: coordinates at t^n (empty on a fixed mesh)
+    Eigen::Matrix3Xd x_prev;          ///< at t^(n-1) (empty before the first step)
+    mesh::DualFaceValues swept_prev;  ///< S(n-1 -> n) (empty before the first step)
 };
 
 /// The dual-time solver on one (partition-local) mesh.
@@ -56,6 +94,18 @@ public:
     /// Set the state at the current time level (a steady solution, say); the next step is
     /// first order. InputError on a size mismatch or a non-physical state (naming the node).
     void set_state(const NodeStates& U);
+    /// Move the mesh along `m.coordinates` from now on: the mesh is placed at the current time
+    /// (t = start + steps * dt), its metrics and the operators' geometry updated, and the next
+    /// step is first order. InputError unless `m.mesh` and `m.dual` are the domain's and the
+    /// callback is set.
+    void set_moving_mesh(MovingMesh m);
+    [[nodiscard]] bool moving() const noexcept { return static_cast<bool>(moving_.coordinates); }
+    /// The time of level 0 (default 0); set before the first step.
+    void set_start_time(double t0);
+    /// The time levels for a checkpoint, and their restoration (with `set_state(U^n)` first;
+    /// restores the mesh to the coordinates at t^n). InputError on sizes that do not fit.
+    [[nodiscard]] TimeLevels time_levels() const;
+    void restore(const NodeStates& U, const TimeLevels& levels);
     /// Called after every inner iteration; return false to stop the step there.
     using Monitor = std::function<bool(const IterationRecord&)>;
     /// Advance one physical step. ConvergenceError if its inner iterations diverge after
@@ -63,7 +113,9 @@ public:
     TimeStepRecord advance(const Monitor& inner = {});
 
     [[nodiscard]] const NodeStates& state() const noexcept { return U_; }
-    [[nodiscard]] double time() const noexcept { return time_; }
+    [[nodiscard]] double time() const noexcept { return t0_ + steps_ * time_settings_.dt; }
+    /// The last step's inner residual R* (owned columns).
+    [[nodiscard]] const NodeStates& residual() const noexcept { return step_.residual(); }
     [[nodiscard]] int steps() const noexcept { return steps_; }
     [[nodiscard]] ForceCoefficients forces() const { return step_.forces(U_); }
     [[nodiscard]] const UnsteadySettings& time_settings() const noexcept { return time_settings_; }
@@ -77,8 +129,15 @@ private:
     std::vector<double> D_;
     NodeStates S_;
     double cfl_ = 0;  ///< the last step's final CFL number, the next step's first
-    double time_ = 0;
+    double t0_ = 0;
     int steps_ = 0;
+    // Moving mesh.
+    void place_mesh(const Eigen::Matrix3Xd& x);
+    MovingMesh moving_;
+    Eigen::Matrix3Xd x_, x_prev_, x_next_;  ///< coordinates at t^n, t^(n-1), t^(n+1)
+    std::vector<double> V_, V_prev_;        ///< dual volumes at t^n, t^(n-1)
+    mesh::DualFaceValues swept_prev_, swept_, g_;
+    Eigen::Matrix3Xd velocities_;  ///< grid velocities of the nodes (the scheme's difference)
 };
 
 }  // namespace manta::euler
