@@ -1,6 +1,6 @@
 /// `manta cfd`: a steady Euler solution on an unstructured mesh (docs/euler.md), serial or with
-/// `mpirun -np N manta cfd ...`. The arguments and the printing; the case itself is
-/// `euler::CfdCase` (euler/case.hpp).
+/// `mpirun -np N manta cfd ...`, or with `--motion` a time-accurate one along a motion file. The
+/// arguments and the printing; the case itself is `euler::CfdCase` (euler/case.hpp).
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -26,6 +26,9 @@ struct CfdArgs {
     std::optional<double> mach, alpha_deg, beta_deg;
     std::optional<int> max_iterations;
     std::optional<int> order;
+    std::string motion;
+    std::optional<double> dt;
+    std::optional<int> max_steps;
     bool restart = false;
     bool json = false;
 };
@@ -46,6 +49,9 @@ int run_cfd(const CfdArgs& a) {
     in.max_iterations = a.max_iterations;
     in.order = a.order;
     in.restart = a.restart;
+    in.motion = a.motion;
+    in.dt = a.dt;
+    in.max_steps = a.max_steps;
     euler::CfdCase cfd(std::move(in), comm);
 
     // The progress line: rewritten in place on a terminal, every 10 s in a log.
@@ -54,6 +60,18 @@ int run_cfd(const CfdArgs& a) {
     double last_print = -every;
     bool printed = false;
     auto progress = [&](const euler::CaseProgress& p) {
+        if (p.unsteady) {
+            if (p.wall_s - last_print < every && p.step < p.n_steps) return;
+            last_print = p.wall_s;
+            printed = true;
+            std::fprintf(stderr,
+                         "%scfd: step %d of %d  t %.6g of %.6g s  %d inner (%.2f orders)  CL %.5f  "
+                         "CD %.5f  %.0f s, about %.0f s left%s",
+                         tty ? "\r" : "", p.step, p.n_steps, p.time, p.end_time, p.iteration,
+                         p.drop, p.CL, p.CD, p.wall_s, p.seconds_left.value_or(0.0),
+                         tty ? "   " : "\n");
+            return;
+        }
         if (p.wall_s - last_print < every) return;
         last_print = p.wall_s;
         printed = true;
@@ -75,6 +93,14 @@ int run_cfd(const CfdArgs& a) {
     const double memory = j["peak_memory_bytes"].get<double>();
     if (a.json) {
         print_json(j);
+    } else if (cfd.unsteady()) {
+        fmt::print("{} ({} nodes) along {}: M {:g}, dt {:g} s, {} steps\n", a.mesh, cfd.n_nodes(),
+                   a.motion, cfd.setup().flow.mach, cfd.dt(), cfd.n_steps());
+        fmt::print("{}: {} inner iterations ({:.1f} per step) in {:.1f} s ({:.2f} s per step)\n",
+                   oc.reason, oc.iterations, j["inner_iterations_per_step"].get<double>(),
+                   oc.wall_s, j["seconds_per_step"].get<double>());
+        fmt::print("last step: CL {:.6f}  CD {:.6f}  CMy {:.6f}; wrote {}\n", oc.forces.CL,
+                   oc.forces.CD, oc.forces.CMy, a.out);
     } else {
         const euler::FlowCondition& f = cfd.setup().flow;
         fmt::print("{} ({} nodes, {} process{}): M {:g}, alpha {:g} deg, beta {:g} deg\n", a.mesh,
@@ -102,7 +128,9 @@ void add_cfd(CLI::App& app, Action& action) {
         "Steady Euler solution on an unstructured mesh (docs/euler.md): history.csv,\n"
         "surface.csv, surface.vtu, flow.vtu, summary.json and restart.bin in --out. Run with\n"
         "`mpirun -np N manta cfd ...` for N processes. A run started again with the same\n"
-        "command continues from its restart file.");
+        "command continues from its restart file. With --motion: time-accurate along the\n"
+        "motion (moving mesh, control surfaces from the configuration): coefficients.csv,\n"
+        "summary.json, .pvd time series, restart_unsteady.bin.");
     auto a = std::make_shared<CfdArgs>();
     cmd->add_option("--mesh", a->mesh, "Mesh file (.su2, .su2.gz, .msh, .cgns; docs/mesh.md)")
         ->required()
@@ -126,6 +154,18 @@ void add_cfd(CLI::App& app, Action& action) {
     cmd->add_option("--initial", a->initial,
                     "Start from this restart file (another run's restart.bin on the same mesh)")
         ->check(CLI::ExistingFile);
+    cmd->add_option("--motion", a->motion,
+                    "Motion file (docs/formats.md#motion-file): run time-accurately along it "
+                    "(coefficients.csv per physical step)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--dt", a->dt,
+                    "Physical time step [s] with --motion (default: the motion's sample spacing; "
+                    "must divide its duration)")
+        ->check(real_in(1e-12, 1e6, "s"));
+    cmd->add_option("--max-steps", a->max_steps,
+                    "With --motion: stop after this many physical steps in all (the same command "
+                    "with a larger value continues)")
+        ->check(integer_in(1, 1000000000));
     cmd->add_flag("--restart", a->restart, "Start over, ignoring the restart file in --out");
     cmd->add_flag("--json", a->json, "Print the summary as JSON");
     cmd->callback([a, &action] { action = [a] { return run_cfd(*a); }; });

@@ -6,18 +6,24 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <span>
 
+#include "manta/aero/motion.hpp"
+#include "manta/aero/types.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
 #include "manta/core/version.hpp"
 #include "manta/euler/output.hpp"
+#include "manta/euler/unsteady.hpp"
 #include "manta/mesh/dual.hpp"
 #include "manta/mesh/readers.hpp"
 #include "manta/mesh/reorder.hpp"
 #include "manta/mesh/vtu.hpp"
+#include "manta/meshmotion/mesh_motion.hpp"
 #include "manta/parallel/distributed.hpp"
 
 namespace manta::euler {
@@ -38,6 +44,81 @@ double peak_rss_bytes() {
 
 double seconds_since(clock::time_point t) {
     return std::chrono::duration<double>(clock::now() - t).count();
+}
+
+/// FNV-1a 64 of a text.
+std::uint64_t fnv1a(std::string_view text) {
+    std::uint64_t h = 1469598103934665603ULL;
+    for (const char ch : text) {
+        h ^= static_cast<unsigned char>(ch);
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+/// Little-endian binary writer and reader of the unsteady checkpoint.
+struct BinOut {
+    std::string buf;
+    template <class T>
+    void put(const T& v) {
+        buf.append(reinterpret_cast<const char*>(&v), sizeof(T));
+    }
+    void put_string(const std::string& v) {
+        put(static_cast<std::uint64_t>(v.size()));
+        buf += v;
+    }
+    void put_doubles(const double* p, std::size_t n) {
+        put(static_cast<std::uint64_t>(n));
+        buf.append(reinterpret_cast<const char*>(p), n * sizeof(double));
+    }
+};
+struct BinIn {
+    const std::string& buf;
+    std::size_t pos = 0;
+    std::string file;
+    void need(std::size_t n) const {
+        if (pos + n > buf.size())
+            throw InputError(fmt::format(
+                "{}: truncated unsteady restart file (byte {} of {}); run with --restart to start "
+                "over",
+                file, pos + n, buf.size()));
+    }
+    template <class T>
+    T get() {
+        need(sizeof(T));
+        T v;
+        std::memcpy(&v, buf.data() + pos, sizeof(T));
+        pos += sizeof(T);
+        return v;
+    }
+    std::string get_string() {
+        const auto n = get<std::uint64_t>();
+        need(n);
+        std::string v = buf.substr(pos, n);
+        pos += n;
+        return v;
+    }
+    std::vector<double> get_doubles() {
+        const auto n = get<std::uint64_t>();
+        need(n * sizeof(double));
+        std::vector<double> v(n);
+        std::memcpy(v.data(), buf.data() + pos, n * sizeof(double));
+        pos += n * sizeof(double);
+        return v;
+    }
+};
+constexpr char unsteady_magic[9] = "MANTAUN1";
+
+/// The .pvd collection of the VTU files written so far.
+std::string pvd_text(const std::vector<std::pair<double, std::string>>& files) {
+    std::string s =
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+        "byte_order=\"LittleEndian\">\n  <Collection>\n";
+    for (const auto& [t, f] : files)
+        s += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
+                         core::format_exact(t), f);
+    s += "  </Collection>\n</VTKFile>\n";
+    return s;
 }
 
 }  // namespace
@@ -86,6 +167,21 @@ struct CfdCase::Impl {
     int resumed_from = -1;
     std::vector<std::string> history;  ///< rank 0: history.csv's rows so far
 
+    // Time-accurate runs.
+    bool unsteady = false;
+    aero::Motion motion;
+    std::unique_ptr<meshmotion::MeshMotion> mesh_motion;
+    std::unique_ptr<UnsteadySolver> usolver;
+    double dt = 0;         ///< physical time step [s]
+    double time_unit = 1;  ///< seconds per solver time unit (1 m / c_inf)
+    double v0 = 0;         ///< the motion's entry speed [m/s]
+    int n_steps = 0;
+    std::string motion_fingerprint;
+    std::filesystem::path unsteady_restart;
+    std::vector<std::string> rows;    ///< coefficients.csv rows, step 0 first
+    std::vector<int> inner_per_step;  ///< inner iterations of each step (for the summary)
+    int unconverged_steps = 0;
+
     Impl(CaseInputs inputs, const parallel::Communicator& c)
         : in(std::move(inputs)), comm(c), root(c.rank() == 0) {}
 
@@ -111,7 +207,171 @@ struct CfdCase::Impl {
     void prepare();
     void resume_or_warm_start();
     void write_restart();
+    void prepare_motion();
+    void resume_unsteady();
+    void write_unsteady_restart();
+    [[nodiscard]] double step_time(long step) const { return motion.t.front() + step * dt; }
+    [[nodiscard]] std::string coefficient_row(int step, const TimeStepRecord* rec) const;
+    CaseResult run_unsteady(const Progress& progress);
 };
+
+void CfdCase::Impl::prepare_motion() {
+    motion = aero::read_motion(in.motion);
+    const std::string src = in.motion.string();
+    if (!motion.metadata.v0)
+        throw InputError(fmt::format(
+            "{}: no '# v0:' line; the unsteady CFD needs the entry speed [m/s] to relate the "
+            "motion's seconds to the flow",
+            src));
+    v0 = *motion.metadata.v0;
+    if (cfg.alpha.value_or(0.0) != 0.0 || cfg.beta.value_or(0.0) != 0.0 || in.alpha || in.beta)
+        throw InputError(fmt::format(
+            "{}: flow.alpha and flow.beta must be 0 (or absent) with --motion; the attitude "
+            "comes from the motion {}",
+            cfg.source, src));
+    const double duration = motion.t.back() - motion.t.front();
+    if (in.dt) {
+        dt = *in.dt;
+    } else {
+        dt = motion.t[1] - motion.t[0];
+        for (std::size_t i = 1; i < motion.t.size(); ++i)
+            if (std::abs(motion.t[i] - motion.t[i - 1] - dt) > 1e-9 * duration)
+                throw InputError(fmt::format(
+                    "{}: the samples are not evenly spaced (row {}: spacing {} s, first {} s); "
+                    "give --dt",
+                    src, i + 1, motion.t[i] - motion.t[i - 1], dt));
+    }
+    const double n = std::round(duration / dt);
+    if (!(dt > 0) || n < 1 || std::abs(n * dt - duration) > 1e-9 * duration)
+        throw InputError(fmt::format(
+            "manta cfd: --dt {} s does not divide the duration {} s of the motion {}; expected "
+            "a time step of duration / N",
+            dt, duration, src));
+    n_steps = static_cast<int>(n);
+    dt = duration / n;  // exactly N steps
+    const double c_inf = v0 / setup.flow.mach;
+    time_unit = 1.0 / c_inf;  // mesh length unit 1 m
+    cfg.unsteady.dt = dt / time_unit;
+    cfg.unsteady.validate();
+    std::string cs;
+    for (const auto& c : cfg.control_surfaces)
+        cs += fmt::format("{}:{}:{},{},{}:{},{},{}:{};", c.mode, c.marker, c.hinge[0].x(),
+                          c.hinge[0].y(), c.hinge[0].z(), c.hinge[1].x(), c.hinge[1].y(),
+                          c.hinge[1].z(), c.gain);
+    motion_fingerprint = fmt::format("motion={:016x} dt={} steps={} surfaces={:016x}",
+                                     fnv1a(aero::motion_to_text(motion)), core::format_exact(dt),
+                                     n_steps, fnv1a(cs));
+}
+
+std::string CfdCase::Impl::coefficient_row(int step, const TimeStepRecord* rec) const {
+    const double t = step_time(step);
+    const aero::MotionState ms = motion.at(t);
+    const meshmotion::RigidPose pose = meshmotion::rigid_pose(ms, setup.reference.moment_point);
+    const ForceCoefficients f = rec ? rec->forces : usolver->forces();
+    // Flow-frame (mesh-like axes) force and moment (moment lengths per axis) about the moving
+    // reference point, then body axes: v_body = C D v_flow.
+    const Eigen::Vector3d F(f.CFx, f.CFy, f.CFz);
+    const double span = setup.reference.span, chord = setup.reference.chord;
+    Eigen::Vector3d M(f.CMx * span, f.CMy * chord, f.CMz * span);
+    M -= (pose.reference - setup.reference.moment_point).cross(F);
+    const Eigen::Matrix3d C = meshmotion::body_from_motion(ms.euler);
+    const Eigen::Matrix3d D = Eigen::Vector3d(-1.0, 1.0, -1.0).asDiagonal();
+    const Eigen::Vector3d Fb = C * D * F, Mb = C * D * M;
+    const Eigen::Vector3d vb =
+        C * Eigen::Vector3d(v0 + ms.velocity[0], ms.velocity[1], ms.velocity[2]);
+    const double airspeed = vb.norm();
+    const double alpha = std::atan2(vb.z(), vb.x());
+    const double beta = std::asin(vb.y() / airspeed);
+    const aero::WindForceCoefficients<double> w =
+        aero::wind_from_body(Fb.x(), Fb.y(), Fb.z(), alpha, beta);
+    using core::format_exact;
+    return fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}", format_exact(t), format_exact(w.CL),
+        format_exact(w.CD), format_exact(w.CY), format_exact(Mb.x() / span),
+        format_exact(Mb.y() / chord), format_exact(Mb.z() / span), format_exact(Fb.x()),
+        format_exact(Fb.z()), format_exact(alpha), format_exact(beta), format_exact(airspeed),
+        rec ? rec->inner_iterations : 0, rec ? format_exact(rec->residual_drop) : std::string("0"));
+}
+
+void CfdCase::Impl::write_unsteady_restart() {
+    if (!root) return;
+    const TimeLevels l = usolver->time_levels();
+    BinOut b;
+    b.buf.append(unsteady_magic, 8);
+    b.put_string(fingerprint);
+    b.put_string(motion_fingerprint);
+    b.put_string(in.motion.string());
+    b.put(setup.flow.mach);
+    b.put(static_cast<std::int32_t>(l.steps));
+    b.put(l.cfl);
+    const NodeStates& U = usolver->state();
+    b.put_doubles(U.data(), static_cast<std::size_t>(U.size()));
+    b.put_doubles(l.U_prev.data(), static_cast<std::size_t>(l.U_prev.size()));
+    b.put_doubles(l.x.data(), static_cast<std::size_t>(l.x.size()));
+    b.put_doubles(l.x_prev.data(), static_cast<std::size_t>(l.x_prev.size()));
+    b.put_doubles(l.swept_prev.edges.data(), l.swept_prev.edges.size());
+    b.put(static_cast<std::uint64_t>(l.swept_prev.boundary.size()));
+    for (const auto& v : l.swept_prev.boundary) b.put_doubles(v.data(), v.size());
+    b.put(static_cast<std::int32_t>(unconverged_steps));
+    b.put(static_cast<std::uint64_t>(rows.size()));
+    for (const std::string& r : rows) b.put_string(r);
+    for (const int k : inner_per_step) b.put(static_cast<std::int32_t>(k));
+    core::write_file_atomic(unsteady_restart, b.buf);
+    std::string csv =
+        "t,CL,CD,CY,Cl,Cm,Cn,CX,CZ,alpha,beta,airspeed,inner_iterations,residual_drop\n";
+    for (const std::string& r : rows) csv += r + "\n";
+    core::write_file_atomic(in.out / "coefficients.csv", csv);
+}
+
+void CfdCase::Impl::resume_unsteady() {
+    const std::string file = unsteady_restart.string();
+    const std::string buf = core::read_file(unsteady_restart);
+    if (buf.size() < 8 || buf.compare(0, 8, unsteady_magic) != 0)
+        throw InputError(fmt::format(
+            "{}: not a MANTA unsteady restart file; run with --restart to start over", file));
+    BinIn b{buf, 8, file};
+    const std::string fp = b.get_string(), mfp = b.get_string(), mfile = b.get_string();
+    const auto mach = b.get<double>();
+    if (fp != fingerprint || mach != setup.flow.mach)
+        throw InputError(fmt::format(
+            "{}: this restart file belongs to another mesh or Mach number ({}, Mach {}; this "
+            "run: {}, Mach {}); run with --restart to start over",
+            file, fp, mach, fingerprint, setup.flow.mach));
+    if (mfp != motion_fingerprint)
+        throw InputError(fmt::format(
+            "{}: this restart file belongs to another motion ({}: {}); this run's is {} ({}); "
+            "run with --restart to start over",
+            file, mfile, mfp, in.motion.string(), motion_fingerprint));
+    TimeLevels l;
+    l.steps = b.get<std::int32_t>();
+    l.cfl = b.get<double>();
+    const auto n = static_cast<Index>(local.mesh.n_nodes());
+    auto as5 = [&](const std::vector<double>& v) {
+        NodeStates U = Eigen::Map<const NodeStates>(v.data(), 5, static_cast<Index>(v.size() / 5));
+        return U;
+    };
+    auto as3 = [&](const std::vector<double>& v) {
+        Eigen::Matrix3Xd x =
+            Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, static_cast<Index>(v.size() / 3));
+        return x;
+    };
+    const NodeStates U = as5(b.get_doubles());
+    l.U_prev = as5(b.get_doubles());
+    l.x = as3(b.get_doubles());
+    l.x_prev = as3(b.get_doubles());
+    l.swept_prev.edges = b.get_doubles();
+    const auto nb = b.get<std::uint64_t>();
+    for (std::uint64_t k = 0; k < nb; ++k) l.swept_prev.boundary.push_back(b.get_doubles());
+    if (U.cols() != n)
+        throw InputError(fmt::format("{}: {} nodes; the mesh has {}", file, U.cols(), n));
+    unconverged_steps = b.get<std::int32_t>();
+    const auto nr = b.get<std::uint64_t>();
+    for (std::uint64_t k = 0; k < nr; ++k) rows.push_back(b.get_string());
+    for (std::uint64_t k = 1; k < nr; ++k) inner_per_step.push_back(b.get<std::int32_t>());
+    if (l.x_prev.cols() == 0) l.swept_prev = {};
+    usolver->restore(U, l);
+    resumed_from = l.steps;
+}
 
 void CfdCase::Impl::prepare() {
     if (!in.config.empty()) cfg = read_cfd_config(in.config);
@@ -126,6 +386,19 @@ void CfdCase::Impl::prepare() {
     setup.flow.validate();
     if (in.order) setup.spatial.order = *in.order;
     if (in.max_iterations) setup.solver.max_iterations = *in.max_iterations;
+    unsteady = !in.motion.empty();
+    if (unsteady) {
+        prepare_motion();
+        if (comm.size() > 1)
+            throw InputError(
+                "manta cfd --motion runs on one process for now; run it without mpirun");
+        if (!in.initial.empty())
+            throw InputError(
+                "manta cfd --motion starts from the free stream; --initial is not "
+                "taken with --motion");
+    } else if (in.dt || in.max_steps) {
+        throw InputError("manta cfd: --dt and --max-steps need --motion");
+    }
 
     // Rank 0 writes the run folder: it checks and locks it before the mesh is read (a second
     // `manta cfd` on the same folder stops here with exit 2; every process stops with it).
@@ -147,6 +420,16 @@ void CfdCase::Impl::prepare() {
     if (root) {
         try {
             CaseMesh r = read_case_mesh(in.mesh);
+            if (cfg.mesh_up == "y") {
+                // A 2-D mesh's slab in the x-y plane: +90 deg about x, (x, y, z) -> (x, -z, y).
+                std::vector<double> x(r.mesh.coordinates().begin(), r.mesh.coordinates().end());
+                for (std::size_t i = 0; i + 2 < x.size(); i += 3) {
+                    const double y = x[i + 1], z = x[i + 2];
+                    x[i + 1] = -z;
+                    x[i + 2] = y;
+                }
+                r.mesh.set_coordinates(x);
+            }
             global.emplace(std::move(r.mesh));
             file_node = std::move(r.file_node);
         } catch (...) {
@@ -163,9 +446,25 @@ void CfdCase::Impl::prepare() {
     setup.roles = resolve_roles(local.mesh, cfg);
 
     const Domain domain{&local.mesh, &dual, local.n_owned, local.halo.get()};
+    fingerprint = mesh_fingerprint(local.mesh, local.global_node, local.n_owned, comm);
+    if (unsteady) {
+        meshmotion::MotionPlacement placement;
+        placement.reference_point = setup.reference.moment_point;
+        placement.motion_source = in.motion.string();
+        mesh_motion = std::make_unique<meshmotion::MeshMotion>(local.mesh, motion, placement,
+                                                               cfg.control_surfaces);
+        mesh_motion->check_motion();
+        usolver = std::make_unique<UnsteadySolver>(domain, comm, setup, cfg.unsteady);
+        usolver->set_moving_mesh(
+            {&local.mesh, &dual, [this](double, long step, Eigen::Matrix3Xd& x) {
+                 mesh_motion->coordinates_at(step_time(step), x, step);
+             }});
+        unsteady_restart = in.out / "restart_unsteady.bin";
+        if (std::filesystem::exists(unsteady_restart) && !in.restart) resume_unsteady();
+        return;
+    }
     solver = std::make_unique<SteadySolver>(domain, comm, setup);
     restart_file = in.out / "restart.bin";
-    fingerprint = mesh_fingerprint(local.mesh, local.global_node, local.n_owned, comm);
     resume_or_warm_start();
 }
 
@@ -264,12 +563,158 @@ int CfdCase::resumed_from() const noexcept {
 std::int64_t CfdCase::n_nodes() const noexcept {
     return impl_->local.n_global_nodes;
 }
-const SteadySolver& CfdCase::solver() const noexcept {
+const SteadySolver& CfdCase::solver() const {
+    if (!impl_->solver)
+        throw InputError("CfdCase::solver: a time-accurate case has no steady solver");
     return *impl_->solver;
+}
+bool CfdCase::unsteady() const noexcept {
+    return impl_->unsteady;
+}
+double CfdCase::dt() const noexcept {
+    return impl_->dt;
+}
+int CfdCase::n_steps() const noexcept {
+    return impl_->n_steps;
+}
+
+CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
+    UnsteadySolver& s = *usolver;
+    const auto t_run = clock::now();
+    const int first = s.steps();
+    if (rows.empty()) rows.push_back(coefficient_row(0, nullptr));
+    const int last = in.max_steps ? std::min(n_steps, *in.max_steps) : n_steps;
+    const mesh::Mesh& m = local.mesh;
+    std::vector<std::pair<double, std::string>> surface_files, volume_files;
+    const int every = cfg.output_every;
+    auto write_fields = [&](int step) {
+        const std::vector<double> prim = primitive_state(s.state(), setup);
+        const std::vector<double> cp = pressure_coefficient(s.state(), setup);
+        const std::vector<double> machs = mach_number(s.state(), setup);
+        const auto n = static_cast<std::size_t>(m.n_nodes());
+        std::vector<double> rho(n), velocity(3 * n), p(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            rho[i] = prim[5 * i];
+            for (int k = 0; k < 3; ++k) velocity[3 * i + k] = prim[5 * i + 1 + k];
+            p[i] = prim[5 * i + 4];
+        }
+        const std::vector<mesh::VtuField> fields{{"density", rho},
+                                                 {"Velocity", velocity, 3},
+                                                 {"pressure", p},
+                                                 {"Cp", cp},
+                                                 {"Mach", machs}};
+        const std::string tag = fmt::format("{:06d}", step);
+        if (cfg.output.surface)
+            mesh::write_vtu_surface(in.out / ("surface_" + tag + ".vtu"), m, fields);
+        if (cfg.output.volume) mesh::write_vtu_volume(in.out / ("flow_" + tag + ".vtu"), m, fields);
+    };
+    auto write_pvd = [&](int upto) {
+        surface_files.clear();
+        volume_files.clear();
+        if (every <= 0) return;
+        for (int k = 0; k <= upto; k += every) {
+            const std::string tag = fmt::format("{:06d}", k);
+            surface_files.emplace_back(step_time(k), "surface_" + tag + ".vtu");
+            volume_files.emplace_back(step_time(k), "flow_" + tag + ".vtu");
+        }
+        if (cfg.output.surface)
+            core::write_file_atomic(in.out / "surface.pvd", pvd_text(surface_files));
+        if (cfg.output.volume) core::write_file_atomic(in.out / "flow.pvd", pvd_text(volume_files));
+    };
+    if (every > 0 && first == 0) {
+        write_fields(0);
+        write_pvd(0);
+    }
+    double last_checkpoint = 0.0;
+    const double interval = cfg.output.checkpoint_interval_s;
+    TimeStepRecord rec;
+    for (int k = first + 1; k <= last; ++k) {
+        rec = s.advance();
+        rows.push_back(coefficient_row(k, &rec));
+        inner_per_step.push_back(rec.inner_iterations);
+        if (!rec.converged) ++unconverged_steps;
+        if (every > 0 && k % every == 0) {
+            write_fields(k);
+            write_pvd(k);
+        }
+        const double wall = seconds_since(t_run);
+        if (k == last || interval == 0.0 || wall - last_checkpoint >= interval) {
+            last_checkpoint = wall;
+            write_unsteady_restart();
+        }
+        if (progress) {
+            CaseProgress p;
+            p.unsteady = true;
+            p.step = k;
+            p.n_steps = n_steps;
+            p.time = step_time(k);
+            p.end_time = motion.t.back();
+            p.iteration = rec.inner_iterations;
+            p.drop = rec.residual_drop;
+            p.target = cfg.unsteady.inner_drop;
+            p.CL = rec.forces.CL;
+            p.CD = rec.forces.CD;
+            p.wall_s = wall;
+            p.seconds_left = wall / (k - first) * (last - k);
+            progress(p);
+        }
+    }
+    if (first >= last) write_unsteady_restart();
+    const double solve_s = seconds_since(t_run);
+
+    CaseResult result;
+    SolveOutcome& oc = result.outcome;
+    oc.converged = unconverged_steps == 0;
+    oc.wall_s = solve_s;
+    oc.forces = s.forces();
+    for (const int it : inner_per_step) oc.iterations += it;
+    oc.reason = last < n_steps ? fmt::format("stopped after step {} of {}", last, n_steps)
+                               : fmt::format("{} physical steps", n_steps);
+    if (unconverged_steps > 0)
+        oc.reason += fmt::format(", {} with the inner iterations at their cap", unconverged_steps);
+    const double memory = peak_rss_bytes();
+    nlohmann::json j;
+    j["manta_version"] = core::version();
+    j["mesh"] = in.mesh.string();
+    j["motion"] = in.motion.string();
+    j["nodes"] = m.n_nodes();
+    j["processes"] = comm.size();
+    j["flow"] = {{"mach", setup.flow.mach}, {"v0", v0}, {"gamma", setup.flow.gamma}};
+    j["reference"] = {{"area", s.reference_area()},
+                      {"chord", setup.reference.chord},
+                      {"span", setup.reference.span},
+                      {"moment_point",
+                       {setup.reference.moment_point.x(), setup.reference.moment_point.y(),
+                        setup.reference.moment_point.z()}}};
+    j["dt"] = dt;
+    j["dt_solver"] = cfg.unsteady.dt;
+    j["order"] = cfg.unsteady.order;
+    j["steps"] = last;
+    j["n_steps"] = n_steps;
+    j["time"] = step_time(last);
+    j["coefficients"] = to_json(oc.forces);
+    j["converged"] = oc.converged;
+    j["reason"] = oc.reason;
+    j["unconverged_steps"] = unconverged_steps;
+    j["inner_iterations"] = oc.iterations;
+    j["inner_iterations_per_step"] =
+        inner_per_step.empty() ? 0.0 : static_cast<double>(oc.iterations) / inner_per_step.size();
+    j["resumed_from"] = resumed_from;
+    j["solve_time_s"] = solve_s;
+    j["seconds_per_step"] = last > first ? solve_s / (last - first) : 0.0;
+    j["mesh_time_s"] = read_s;
+    j["deformation_setup_s"] = mesh_motion->setup_seconds();
+    j["wall_time_s"] = seconds_since(t_start);
+    j["peak_memory_bytes"] = memory;
+    j["motion_fingerprint"] = motion_fingerprint;
+    core::write_file_atomic(in.out / "summary.json", j.dump(2) + "\n");
+    result.summary = std::move(j);
+    return result;
 }
 
 CaseResult CfdCase::run(const Progress& progress) {
     Impl& c = *impl_;
+    if (c.unsteady) return c.run_unsteady(progress);
     const parallel::Communicator& comm = c.comm;
     SteadySolver& solver = *c.solver;
     const CaseSetup& setup = c.setup;

@@ -7,6 +7,7 @@
 
 #include "manta/core/config.hpp"
 #include "manta/core/error.hpp"
+#include "manta/meshmotion/control_surfaces.hpp"
 
 namespace manta::euler {
 
@@ -132,6 +133,29 @@ CfdConfig read(const ConfigNode& root) {
         c.output.surface = o.boolean_or("surface", c.output.surface);
         o.finish();
     }
+    if (auto n = top.optional_child("mesh")) {
+        ConfigMap m(*n);
+        c.mesh_up = m.choice_or("up", "z", {"z", "y"});
+        m.finish();
+    }
+    if (auto n = top.optional_child("unsteady")) {
+        ConfigMap u(*n);
+        UnsteadySettings& t = c.unsteady;
+        t.order = static_cast<int>(u.integer_or("order", t.order, NumberSpec::range(1, 2, "-")));
+        t.max_inner = static_cast<int>(
+            u.integer_or("max_inner", t.max_inner, NumberSpec::range(1, 1e6, "-")));
+        t.inner_drop =
+            u.number_or("inner_drop", t.inner_drop, NumberSpec::range(0.1, 16, "orders"));
+        t.coefficient_window = static_cast<int>(u.integer_or(
+            "coefficient_window", t.coefficient_window, NumberSpec::range(2, 1e6, "-")));
+        t.coefficient_tolerance = u.number_or("coefficient_tolerance", t.coefficient_tolerance,
+                                              NumberSpec::positive("-"));
+        c.output_every = static_cast<int>(
+            u.integer_or("output_every", c.output_every, NumberSpec::range(0, 1e9, "steps")));
+        u.finish();
+    }
+    if (auto n = top.optional_child("control_surfaces"))
+        c.control_surfaces = meshmotion::parse_control_surfaces(*n);
     top.finish();
     return c;
 }

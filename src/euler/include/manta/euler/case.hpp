@@ -9,10 +9,12 @@
 /// from a configuration, the renumbered mesh, the forces as JSON) are free functions here;
 /// `EulerSource` is built from them.
 ///
-/// The run is one steady solve today. A time-accurate run takes the same place in `run`: a loop
-/// over physical steps, each moving the mesh, solving the step's inner iterations with
-/// `PseudoTimeStep` (extra terms from the time scheme) and writing one row of per-step
-/// coefficients, with the same checkpoints and outputs.
+/// With a motion file (`CaseInputs::motion`) the run is time-accurate instead: the mesh moves
+/// along the motion (meshmotion::MeshMotion, with the configuration's control surfaces), the
+/// `UnsteadySolver` advances one physical step after the other, and the run folder gets
+/// coefficients.csv (one row per step), summary.json, the surface and volume solution every
+/// `unsteady.output_every` steps as .pvd time series, and restart_unsteady.bin
+/// (docs/formats.md#unsteady-cfd-run-folder).
 
 #include <filesystem>
 #include <functional>
@@ -41,6 +43,10 @@ struct CaseInputs {
     std::optional<int> max_iterations;  ///< overrides solver.max_iterations
     std::optional<int> order;           ///< overrides numerics.order
     bool restart = false;               ///< start over, ignoring the run folder's restart file
+    /// Motion file (docs/formats.md#motion-file): a time-accurate run along it.
+    std::filesystem::path motion;
+    std::optional<double> dt;      ///< physical time step [s]; default the motion's spacing
+    std::optional<int> max_steps;  ///< stop after this many physical steps in all
 };
 
 /// One iteration's progress, for a progress line.
@@ -52,7 +58,13 @@ struct CaseProgress {
     double CL = 0, CD = 0, cfl = 0;
     double wall_s = 0;  ///< since the start of the solve
     /// From the recent rate of residual drop; none while unknown or once the target is reached.
+    /// Time-accurate runs: from the mean time per physical step of this run.
     std::optional<double> seconds_left;
+    /// Time-accurate runs (then `iteration` is the step's inner iterations): the physical step
+    /// done, their number, its time and the motion's end [s].
+    bool unsteady = false;
+    int step = 0, n_steps = 0;
+    double time = 0, end_time = 0;
 };
 
 /// A finished run.
@@ -108,8 +120,13 @@ public:
     [[nodiscard]] int resumed_from() const noexcept;
     /// Nodes of the whole mesh.
     [[nodiscard]] std::int64_t n_nodes() const noexcept;
-    /// The solver (partition-local).
-    [[nodiscard]] const SteadySolver& solver() const noexcept;
+    /// The steady solver (partition-local); a time-accurate case has none (InputError).
+    [[nodiscard]] const SteadySolver& solver() const;
+    /// Whether the case is time-accurate (a motion was given).
+    [[nodiscard]] bool unsteady() const noexcept;
+    /// Time-accurate cases: the physical time step [s] and the number of steps.
+    [[nodiscard]] double dt() const noexcept;
+    [[nodiscard]] int n_steps() const noexcept;
 
 private:
     struct Impl;

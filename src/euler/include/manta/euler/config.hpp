@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "manta/euler/solver.hpp"
+#include "manta/euler/unsteady.hpp"
 #include "manta/mesh/mesh.hpp"
+#include "manta/meshmotion/mesh_motion.hpp"
 
 namespace manta::euler {
 
@@ -35,6 +37,15 @@ struct CfdConfig {
     SpatialOptions spatial;
     SolverSettings solver;
     OutputSettings output;
+    /// `mesh.up`: the mesh's up axis, "z" (MANTA's axes) or "y" (a 2-D mesh in the x-y plane,
+    /// whose slab is turned by +90 deg about x, (x, y, z) -> (x, -z, y), after reading).
+    std::string mesh_up = "z";
+    /// `unsteady:` time stepping of `manta cfd --motion` (dt comes from the command line or the
+    /// motion file).
+    UnsteadySettings unsteady;
+    int output_every = 0;  ///< `unsteady.output_every`: steps between VTU outputs (0: none)
+    /// `control_surfaces:` (meshmotion::parse_control_surfaces, docs/mesh-motion.md).
+    std::vector<meshmotion::ControlSurfaceSpec> control_surfaces;
     std::string source = "<defaults>";  ///< the file, for messages
 };
 

@@ -120,6 +120,8 @@ public:
     [[nodiscard]] ForceCoefficients forces() const { return step_.forces(U_); }
     [[nodiscard]] const UnsteadySettings& time_settings() const noexcept { return time_settings_; }
     [[nodiscard]] const CaseSetup& setup() const noexcept { return step_.setup(); }
+    /// The reference area used (the configured one, or the projected wall area at the start).
+    [[nodiscard]] double reference_area() const noexcept { return step_.reference_area(); }
 
 private:
     UnsteadySettings time_settings_;
