@@ -216,8 +216,11 @@ struct CfdCase::Impl {
 };
 
 void CfdCase::Impl::prepare_motion() {
-    motion = aero::read_motion(in.motion);
     const std::string src = in.motion.string();
+    if (motion.metadata.mach && std::abs(*motion.metadata.mach - setup.flow.mach) > 1e-6)
+        throw InputError(
+            fmt::format("{}: '# mach: {}' differs from the flow's Mach number {}; give one of them",
+                        src, *motion.metadata.mach, setup.flow.mach));
     if (!motion.metadata.v0)
         throw InputError(fmt::format(
             "{}: no '# v0:' line; the unsteady CFD needs the entry speed [m/s] to relate the "
@@ -376,10 +379,13 @@ void CfdCase::Impl::resume_unsteady() {
 void CfdCase::Impl::prepare() {
     if (!in.config.empty()) cfg = read_cfd_config(in.config);
     setup = case_setup(cfg);
-    const std::optional<double> mach = in.mach ? in.mach : cfg.mach;
+    if (!in.motion.empty()) motion = aero::read_motion(in.motion);
+    std::optional<double> mach = in.mach ? in.mach : cfg.mach;
+    if (!mach && !in.motion.empty()) mach = motion.metadata.mach;
     if (!mach)
         throw InputError(
-            "manta cfd: no Mach number; give --mach or flow.mach in the configuration");
+            "manta cfd: no Mach number; give --mach or flow.mach in the configuration (or # mach: "
+            "in the motion file)");
     setup.flow.mach = *mach;
     if (in.alpha) setup.flow.alpha = *in.alpha;
     if (in.beta) setup.flow.beta = *in.beta;

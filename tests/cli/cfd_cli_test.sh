@@ -154,5 +154,55 @@ if [ -n "$mpiexec" ]; then
     np_pair jst "$work/om6_jst.yaml" 0.2786
 fi
 
+# Time-accurate runs (`--motion`) on SU2's NACA 64A010 mesh (2-D, turned y up): a short pitching
+# motion; kill -9 during the run and the same command resumes to the uninterrupted history byte
+# for byte; a restart of another motion, a time step that does not divide the motion and a
+# motion without v0 are one-line errors.
+ct5=$shared/reference/naca64a010_ct5/mesh_NACA64A010_inv.su2
+if [ -f "$ct5" ]; then
+    python3 - "$work/pitch.csv" "$work/pitch2.csv" <<'PY'
+import math, sys
+for name, amp in ((sys.argv[1], 1.0), (sys.argv[2], 2.0)):
+    with open(name, "w") as f:
+        f.write("# v0: 270.876\n# mach: 0.796\nt,x_ref,y_ref,z_ref,phi,theta,psi,mode_elevator,mode_aileron,mode_rudder\n")
+        for i in range(9):
+            t = i * 0.0025
+            f.write(f"{t!r},0,0,0,0,{math.radians(amp) * math.sin(100 * t)!r},0,0,0,0\n")
+PY
+    printf 'mesh: {up: y}\nmarkers: {airfoil: wall}\nreference: {area: 1, moment_point: [0.25, 0, 0]}\nnumerics: {flux: jst, wall: strong}\nunsteady: {max_inner: 4, output_every: 4}\noutput: {checkpoint_interval_s: 0}\n' > "$work/ct5.yaml"
+    ucfd=("$manta" cfd --mesh "$ct5" --motion "$work/pitch.csv" --config "$work/ct5.yaml")
+    check "cfd --motion" 0 "${ucfd[@]}" --out "$work/u1" --json
+    for f in coefficients.csv summary.json restart_unsteady.bin surface.pvd flow.pvd surface_000008.vtu flow_000004.vtu; do
+        if [ -f "$work/u1/$f" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: --motion wrote no $f"; fi
+    done
+    contains "coefficients.csv columns" "$work/u1/coefficients.csv" '^t,CL,CD,CY,Cl,Cm,Cn,CX,CZ,alpha,beta,airspeed,inner_iterations,residual_drop$'
+    if [ "$(wc -l < "$work/u1/coefficients.csv")" -eq 10 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: coefficients.csv: not 1 + 9 rows"; fi
+    contains "summary steps" "$work/u1/summary.json" '"n_steps": 8'
+    contains "pvd lists step 8" "$work/u1/surface.pvd" 'surface_000008.vtu'
+    # Stopped after 3 steps, then continued: the same history.
+    check "cfd --motion --max-steps 3" 0 "${ucfd[@]}" --out "$work/u2" --max-steps 3
+    check "cfd --motion continued" 0 "${ucfd[@]}" --out "$work/u2"
+    if cmp -s "$work/u1/coefficients.csv" "$work/u2/coefficients.csv"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: stop and continue: coefficients.csv differs"; diff "$work/u1/coefficients.csv" "$work/u2/coefficients.csv" | head; fi
+    # kill -9 once the first checkpoint is there, then the same command.
+    "${ucfd[@]}" --out "$work/u3" >/dev/null 2>&1 &
+    pid=$!
+    for _ in $(seq 1 600); do [ -f "$work/u3/restart_unsteady.bin" ] && break; sleep 0.05; done
+    kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+    killed_at=$(($(wc -l < "$work/u3/coefficients.csv" 2>/dev/null || echo 1) - 1))
+    echo "kill -9 after step $killed_at of 8"
+    check "cfd --motion after kill -9" 0 "${ucfd[@]}" --out "$work/u3"
+    if cmp -s "$work/u1/coefficients.csv" "$work/u3/coefficients.csv"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: kill -9 and resume: coefficients.csv differs"; diff "$work/u1/coefficients.csv" "$work/u3/coefficients.csv" | head; fi
+    # Another motion in the same folder: refused, naming both.
+    check "restart of another motion" 2 "$manta" cfd --mesh "$ct5" --motion "$work/pitch2.csv" --config "$work/ct5.yaml" --out "$work/u2" --max-steps 4
+    one_line "another motion: one line" "$work/err.txt"
+    contains "another motion names both" "$work/err.txt" "pitch.csv.*pitch2.csv"
+    check "dt that does not divide" 2 "${ucfd[@]}" --out "$work/u4" --dt 0.003
+    one_line "dt: one line" "$work/err.txt"
+    contains "dt names the duration" "$work/err.txt" "does not divide the duration 0.02"
+    grep -v '^# v0' "$work/pitch.csv" > "$work/nov0.csv"
+    check "motion without v0" 2 "$manta" cfd --mesh "$ct5" --motion "$work/nov0.csv" --config "$work/ct5.yaml" --out "$work/u5"
+    contains "no v0 named" "$work/err.txt" "v0"
+fi
+
 echo "cfd_cli_test: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
