@@ -208,12 +208,47 @@ struct CfdCase::Impl {
     void resume_or_warm_start();
     void write_restart();
     void prepare_motion();
+    /// The local nodes' coordinates at step `step` (collective with several processes).
+    void coordinates(long step, Eigen::Matrix3Xd& x);
+    /// Owned values of all processes in global order on rank 0 (as `gather_owned`).
+    [[nodiscard]] std::vector<double> gather(const double* v, Index cols, int comps) const {
+        return parallel::gather_owned(
+            local, std::span<const double>(v, static_cast<std::size_t>(cols) * comps), comps, comm);
+    }
+    Eigen::Matrix3Xd global_x;  ///< rank 0: the whole mesh's coordinates (several processes)
+    std::vector<double> x_buffer;
     void resume_unsteady();
     void write_unsteady_restart();
     [[nodiscard]] double step_time(long step) const { return motion.t.front() + step * dt; }
     [[nodiscard]] std::string coefficient_row(int step, const TimeStepRecord* rec) const;
     CaseResult run_unsteady(const Progress& progress);
 };
+
+void CfdCase::Impl::coordinates(long step, Eigen::Matrix3Xd& x) {
+    const double t = step_time(step);
+    if (comm.size() == 1) {
+        mesh_motion->coordinates_at(t, x, step);
+        return;
+    }
+    const auto n = static_cast<std::size_t>(local.n_global_nodes);
+    x_buffer.assign(3 * n, 0.0);
+    std::exception_ptr err;
+    if (root) {
+        try {
+            mesh_motion->coordinates_at(t, global_x, step);
+            std::copy(global_x.data(), global_x.data() + 3 * n, x_buffer.begin());
+        } catch (...) {
+            err = std::current_exception();
+        }
+    }
+    parallel::rethrow_root_error(err, comm);
+    comm.sum(std::span<double>(x_buffer));  // rank 0's values to every process
+    x.resize(3, local.mesh.n_nodes());
+    for (Index i = 0; i < x.cols(); ++i) {
+        const auto g = static_cast<std::size_t>(local.global_node[static_cast<std::size_t>(i)]);
+        x.col(i) = Eigen::Vector3d(x_buffer[3 * g], x_buffer[3 * g + 1], x_buffer[3 * g + 2]);
+    }
+}
 
 void CfdCase::Impl::prepare_motion() {
     const std::string src = in.motion.string();
@@ -297,8 +332,18 @@ std::string CfdCase::Impl::coefficient_row(int step, const TimeStepRecord* rec) 
 }
 
 void CfdCase::Impl::write_unsteady_restart() {
-    if (!root) return;
     const TimeLevels l = usolver->time_levels();
+    const NodeStates& Ul = usolver->state();
+    // Global arrays on rank 0 (collective). The swept volumes are per local dual face: kept with
+    // one process; with several a resumed run recomputes them from the two coordinate levels
+    // (the same arithmetic, so the same values).
+    const std::vector<double> U = gather(Ul.data(), Ul.cols(), 5);
+    const std::vector<double> U_prev =
+        l.U_prev.cols() ? gather(l.U_prev.data(), l.U_prev.cols(), 5) : std::vector<double>{};
+    const std::vector<double> x = gather(l.x.data(), l.x.cols(), 3);
+    const std::vector<double> x_prev =
+        l.x_prev.cols() ? gather(l.x_prev.data(), l.x_prev.cols(), 3) : std::vector<double>{};
+    if (!root) return;
     BinOut b;
     b.buf.append(unsteady_magic, 8);
     b.put_string(fingerprint);
@@ -307,14 +352,15 @@ void CfdCase::Impl::write_unsteady_restart() {
     b.put(setup.flow.mach);
     b.put(static_cast<std::int32_t>(l.steps));
     b.put(l.cfl);
-    const NodeStates& U = usolver->state();
-    b.put_doubles(U.data(), static_cast<std::size_t>(U.size()));
-    b.put_doubles(l.U_prev.data(), static_cast<std::size_t>(l.U_prev.size()));
-    b.put_doubles(l.x.data(), static_cast<std::size_t>(l.x.size()));
-    b.put_doubles(l.x_prev.data(), static_cast<std::size_t>(l.x_prev.size()));
-    b.put_doubles(l.swept_prev.edges.data(), l.swept_prev.edges.size());
-    b.put(static_cast<std::uint64_t>(l.swept_prev.boundary.size()));
-    for (const auto& v : l.swept_prev.boundary) b.put_doubles(v.data(), v.size());
+    b.put_doubles(U.data(), U.size());
+    b.put_doubles(U_prev.data(), U_prev.size());
+    b.put_doubles(x.data(), x.size());
+    b.put_doubles(x_prev.data(), x_prev.size());
+    const bool swept = comm.size() == 1 && l.x_prev.cols() > 0;
+    b.put_doubles(l.swept_prev.edges.data(), swept ? l.swept_prev.edges.size() : 0);
+    b.put(static_cast<std::uint64_t>(swept ? l.swept_prev.boundary.size() : 0));
+    if (swept)
+        for (const auto& v : l.swept_prev.boundary) b.put_doubles(v.data(), v.size());
     b.put(static_cast<std::int32_t>(unconverged_steps));
     b.put(static_cast<std::uint64_t>(rows.size()));
     for (const std::string& r : rows) b.put_string(r);
@@ -349,13 +395,31 @@ void CfdCase::Impl::resume_unsteady() {
     l.steps = b.get<std::int32_t>();
     l.cfl = b.get<double>();
     const auto n = static_cast<Index>(local.mesh.n_nodes());
+    const auto n_global = static_cast<std::size_t>(local.n_global_nodes);
+    auto fits = [&](const std::vector<double>& v, std::size_t comps, const char* what) {
+        if (!v.empty() && v.size() != comps * n_global)
+            throw InputError(fmt::format("{}: {} has {} values; expected {} per node of {}", file,
+                                         what, v.size(), comps, n_global));
+    };
+    // Global values -> the local nodes.
     auto as5 = [&](const std::vector<double>& v) {
-        NodeStates U = Eigen::Map<const NodeStates>(v.data(), 5, static_cast<Index>(v.size() / 5));
+        fits(v, 5, "a state");
+        NodeStates U(5, v.empty() ? 0 : n);
+        for (Index i = 0; i < U.cols(); ++i)
+            for (int k = 0; k < 5; ++k)
+                U(k, i) =
+                    v[5 * static_cast<std::size_t>(local.global_node[static_cast<std::size_t>(i)]) +
+                      k];
         return U;
     };
     auto as3 = [&](const std::vector<double>& v) {
-        Eigen::Matrix3Xd x =
-            Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, static_cast<Index>(v.size() / 3));
+        fits(v, 3, "a coordinate level");
+        Eigen::Matrix3Xd x(3, v.empty() ? 0 : n);
+        for (Index i = 0; i < x.cols(); ++i)
+            for (int k = 0; k < 3; ++k)
+                x(k, i) =
+                    v[3 * static_cast<std::size_t>(local.global_node[static_cast<std::size_t>(i)]) +
+                      k];
         return x;
     };
     const NodeStates U = as5(b.get_doubles());
@@ -365,13 +429,12 @@ void CfdCase::Impl::resume_unsteady() {
     l.swept_prev.edges = b.get_doubles();
     const auto nb = b.get<std::uint64_t>();
     for (std::uint64_t k = 0; k < nb; ++k) l.swept_prev.boundary.push_back(b.get_doubles());
-    if (U.cols() != n)
-        throw InputError(fmt::format("{}: {} nodes; the mesh has {}", file, U.cols(), n));
+    if (U.cols() != n) throw InputError(fmt::format("{}: no state; corrupt file", file));
     unconverged_steps = b.get<std::int32_t>();
     const auto nr = b.get<std::uint64_t>();
     for (std::uint64_t k = 0; k < nr; ++k) rows.push_back(b.get_string());
     for (std::uint64_t k = 1; k < nr; ++k) inner_per_step.push_back(b.get<std::int32_t>());
-    if (l.x_prev.cols() == 0) l.swept_prev = {};
+    if (l.x_prev.cols() == 0 || comm.size() > 1) l.swept_prev = {};  // recomputed by restore
     usolver->restore(U, l);
     resumed_from = l.steps;
 }
@@ -395,9 +458,6 @@ void CfdCase::Impl::prepare() {
     unsteady = !in.motion.empty();
     if (unsteady) {
         prepare_motion();
-        if (comm.size() > 1)
-            throw InputError(
-                "manta cfd --motion runs on one process for now; run it without mpirun");
         if (!in.initial.empty())
             throw InputError(
                 "manta cfd --motion starts from the free stream; --initial is not "
@@ -457,14 +517,24 @@ void CfdCase::Impl::prepare() {
         meshmotion::MotionPlacement placement;
         placement.reference_point = setup.reference.moment_point;
         placement.motion_source = in.motion.string();
-        mesh_motion = std::make_unique<meshmotion::MeshMotion>(local.mesh, motion, placement,
-                                                               cfg.control_surfaces);
-        mesh_motion->check_motion();
+        // The deformation's set-up needs the whole mesh: rank 0 moves the global mesh and every
+        // process takes its nodes' coordinates (`coordinates`).
+        std::exception_ptr motion_error;
+        if (root) {
+            try {
+                mesh_motion = std::make_unique<meshmotion::MeshMotion>(
+                    comm.size() == 1 ? local.mesh : *global, motion, placement,
+                    cfg.control_surfaces);
+                mesh_motion->check_motion();
+            } catch (...) {
+                motion_error = std::current_exception();
+            }
+        }
+        parallel::rethrow_root_error(motion_error, comm);
         usolver = std::make_unique<UnsteadySolver>(domain, comm, setup, cfg.unsteady);
         usolver->set_moving_mesh(
-            {&local.mesh, &dual, [this](double, long step, Eigen::Matrix3Xd& x) {
-                 mesh_motion->coordinates_at(step_time(step), x, step);
-             }});
+            {&local.mesh, &dual,
+             [this](double, long step, Eigen::Matrix3Xd& x) { coordinates(step, x); }});
         unsteady_restart = in.out / "restart_unsteady.bin";
         if (std::filesystem::exists(unsteady_restart) && !in.restart) resume_unsteady();
         return;
@@ -594,10 +664,21 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
     std::vector<std::pair<double, std::string>> surface_files, volume_files;
     const int every = cfg.output_every;
     auto write_fields = [&](int step) {
-        const std::vector<double> prim = primitive_state(s.state(), setup);
-        const std::vector<double> cp = pressure_coefficient(s.state(), setup);
-        const std::vector<double> machs = mach_number(s.state(), setup);
-        const auto n = static_cast<std::size_t>(m.n_nodes());
+        // Gathered to rank 0 in the global numbering, on the mesh at this step's coordinates.
+        const int P = comm.size();
+        std::vector<double> prim = primitive_state(s.state(), setup);
+        std::vector<double> cp = pressure_coefficient(s.state(), setup);
+        std::vector<double> machs = mach_number(s.state(), setup);
+        if (P > 1) {
+            prim = parallel::gather_owned(local, prim, 5, comm);
+            cp = parallel::gather_owned(local, cp, 1, comm);
+            machs = parallel::gather_owned(local, machs, 1, comm);
+            const std::vector<double> xg = parallel::gather_owned(local, m.coordinates(), 3, comm);
+            if (root) global->set_coordinates(xg);
+        }
+        if (!root) return;
+        const mesh::Mesh& om = P == 1 ? m : *global;
+        const auto n = static_cast<std::size_t>(om.n_nodes());
         std::vector<double> rho(n), velocity(3 * n), p(n);
         for (std::size_t i = 0; i < n; ++i) {
             rho[i] = prim[5 * i];
@@ -611,8 +692,9 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
                                                  {"Mach", machs}};
         const std::string tag = fmt::format("{:06d}", step);
         if (cfg.output.surface)
-            mesh::write_vtu_surface(in.out / ("surface_" + tag + ".vtu"), m, fields);
-        if (cfg.output.volume) mesh::write_vtu_volume(in.out / ("flow_" + tag + ".vtu"), m, fields);
+            mesh::write_vtu_surface(in.out / ("surface_" + tag + ".vtu"), om, fields);
+        if (cfg.output.volume)
+            mesh::write_vtu_volume(in.out / ("flow_" + tag + ".vtu"), om, fields);
     };
     auto write_pvd = [&](int upto) {
         surface_files.clear();
@@ -623,6 +705,7 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
             surface_files.emplace_back(step_time(k), "surface_" + tag + ".vtu");
             volume_files.emplace_back(step_time(k), "flow_" + tag + ".vtu");
         }
+        if (!root) return;
         if (cfg.output.surface)
             core::write_file_atomic(in.out / "surface.pvd", pvd_text(surface_files));
         if (cfg.output.volume) core::write_file_atomic(in.out / "flow.pvd", pvd_text(volume_files));
@@ -643,12 +726,12 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
             write_fields(k);
             write_pvd(k);
         }
-        const double wall = seconds_since(t_run);
+        const double wall = comm.max(seconds_since(t_run));  // the same decision everywhere
         if (k == last || interval == 0.0 || wall - last_checkpoint >= interval) {
             last_checkpoint = wall;
             write_unsteady_restart();
         }
-        if (progress) {
+        if (root && progress) {
             CaseProgress p;
             p.unsteady = true;
             p.step = k;
@@ -678,12 +761,13 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
                                : fmt::format("{} physical steps", n_steps);
     if (unconverged_steps > 0)
         oc.reason += fmt::format(", {} with the inner iterations at their cap", unconverged_steps);
-    const double memory = peak_rss_bytes();
+    const double memory = comm.sum(peak_rss_bytes());
+    if (!root) return result;
     nlohmann::json j;
     j["manta_version"] = core::version();
     j["mesh"] = in.mesh.string();
     j["motion"] = in.motion.string();
-    j["nodes"] = m.n_nodes();
+    j["nodes"] = local.n_global_nodes;
     j["processes"] = comm.size();
     j["flow"] = {{"mach", setup.flow.mach}, {"v0", v0}, {"gamma", setup.flow.gamma}};
     j["reference"] = {{"area", s.reference_area()},
@@ -709,7 +793,7 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
     j["solve_time_s"] = solve_s;
     j["seconds_per_step"] = last > first ? solve_s / (last - first) : 0.0;
     j["mesh_time_s"] = read_s;
-    j["deformation_setup_s"] = mesh_motion->setup_seconds();
+    j["deformation_setup_s"] = mesh_motion ? mesh_motion->setup_seconds() : 0.0;
     j["wall_time_s"] = seconds_since(t_start);
     j["peak_memory_bytes"] = memory;
     j["motion_fingerprint"] = motion_fingerprint;

@@ -136,13 +136,21 @@ void UnsteadySolver::restore(const NodeStates& U, const TimeLevels& l) {
     const Domain& d = step_.domain();
     if (l.x_prev.cols() != 0) {
         if (l.x_prev.cols() != n_local) fail("the coordinates at t^(n-1)");
-        if (!l.swept_prev.fits(*d.dual)) fail("the swept volumes");
+        const bool recompute = l.swept_prev.edges.empty() && l.swept_prev.boundary.empty();
+        if (!recompute && !l.swept_prev.fits(*d.dual)) fail("the swept volumes");
         // The volumes of level n-1 from its coordinates (the same arithmetic as when it was
         // the current level, so bit for bit).
         place_mesh(l.x_prev);
         V_prev_ = d.dual->dual_volumes;
         x_prev_ = l.x_prev;
-        swept_prev_ = l.swept_prev;
+        if (recompute)  // S(n-1 -> n) from the two levels, as the step computed it
+            mesh::swept_volumes(
+                *moving_.mesh, *d.dual,
+                std::span<const double>(l.x_prev.data(), static_cast<std::size_t>(l.x_prev.size())),
+                std::span<const double>(l.x.data(), static_cast<std::size_t>(l.x.size())),
+                swept_prev_);
+        else
+            swept_prev_ = l.swept_prev;
     } else {
         x_prev_.resize(3, 0);
         V_prev_.clear();
