@@ -15,6 +15,7 @@
 #include "manta/aero/motion.hpp"
 #include "manta/aero/types.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/core/version.hpp"
 #include "manta/euler/output.hpp"
@@ -312,8 +313,8 @@ std::string CfdCase::Impl::coefficient_row(int step, const TimeStepRecord* rec) 
     const double span = setup.reference.span, chord = setup.reference.chord;
     Eigen::Vector3d M(f.CMx * span, f.CMy * chord, f.CMz * span);
     M -= (pose.reference - setup.reference.moment_point).cross(F);
-    const Eigen::Matrix3d C = meshmotion::body_from_motion(ms.euler);
-    const Eigen::Matrix3d D = Eigen::Vector3d(-1.0, 1.0, -1.0).asDiagonal();
+    const Eigen::Matrix3d C = core::dcm_body_from_earth(ms.euler);  // motion frame -> body
+    const Eigen::Matrix3d D = core::dcm_body_from_geometry();
     const Eigen::Vector3d Fb = C * D * F, Mb = C * D * M;
     const Eigen::Vector3d vb =
         C * Eigen::Vector3d(v0 + ms.velocity[0], ms.velocity[1], ms.velocity[2]);
