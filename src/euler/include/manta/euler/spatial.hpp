@@ -74,7 +74,8 @@
 /// components are replaced by the conditions lambda_i (rho u . e_k) = 0, so the implicit
 /// iteration drives the normal velocity to zero (`apply_wall_tangency`). At a sharp trailing
 /// edge the node's normal is the small sum of both sides' normals, nearly streamwise, and the
-/// strong condition makes the node a stagnation point (Cp about 1 there, as in SU2 v8.1).
+/// strong condition leaves the node only its velocity normal to the chord: on a 2-D section the
+/// flow then turns around the edge and the lift is too high (as in SU2 v8.1; docs/euler.md).
 /// Mixed: strong, except at sharp-edge wall nodes (`SpatialOptions::sharp_edge_deg`), where the
 /// one wall condition is tangency to the edge's bisector (`WallTangency::mixed`).
 ///
