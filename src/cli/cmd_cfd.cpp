@@ -143,7 +143,8 @@ void add_cfd(CLI::App& app, Action& action) {
         ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
     cmd->add_option("--config", a->config,
                     "Configuration YAML: marker roles, reference values, numerics "
-                    "(docs/formats.md#cfd-configuration)")
+                    "(docs/formats.md#cfd-configuration); the mesh's companion file X.mesh.yaml "
+                    "from `manta mesh`, when there is one, gives what it leaves out")
         ->check(CLI::ExistingFile);
     cmd->add_option("--out", a->out, "Output folder")->required()->check(output_path());
     cmd->add_option("--max-iterations", a->max_iterations,

@@ -34,8 +34,8 @@ nlohmann::json to_json(const meshgen::MeshResult& r) {
     const auto& ref = r.companion.reference;
     return {{"mesh", r.mesh_file.string()},
             {"companion", r.companion_file.string()},
-            {"model", std::string(meshgen::to_string(r.companion.model))},
-            {"level", std::string(meshgen::to_string(r.companion.level))},
+            {"model", r.companion.model},
+            {"level", r.companion.level},
             {"quality",
              {{"nodes", q.nodes},
               {"cells", q.cells},
@@ -70,8 +70,8 @@ nlohmann::json to_json(const meshgen::MeshResult& r) {
 
 void print_text(const meshgen::MeshResult& r) {
     const auto& q = r.quality;
-    fmt::print("mesh       {} ({} model, {} level)\n", r.mesh_file.string(),
-               meshgen::to_string(r.companion.model), meshgen::to_string(r.companion.level));
+    fmt::print("mesh       {} ({} model, {} level)\n", r.mesh_file.string(), r.companion.model,
+               r.companion.level);
     fmt::print("companion  {}\n", r.companion_file.string());
     fmt::print("nodes {}  cells {}  boundary faces {}\n", q.nodes, q.cells, q.boundary_faces);
     fmt::print("dihedral angles {:.2f} .. {:.2f} deg, largest neighbour volume ratio {:.1f}\n",

@@ -442,6 +442,7 @@ void CfdCase::Impl::resume_unsteady() {
 
 void CfdCase::Impl::prepare() {
     if (!in.config.empty()) cfg = read_cfd_config(in.config);
+    apply_mesh_companion(cfg, in.mesh);  // the mesh's companion file, where the file is silent
     setup = case_setup(cfg);
     if (!in.motion.empty()) motion = aero::read_motion(in.motion);
     std::optional<double> mach = in.mach ? in.mach : cfg.mach;
@@ -768,6 +769,7 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
     j["manta_version"] = core::version();
     j["mesh"] = in.mesh.string();
     j["motion"] = in.motion.string();
+    if (!cfg.companion.empty()) j["companion"] = cfg.companion.string();
     j["nodes"] = local.n_global_nodes;
     j["processes"] = comm.size();
     j["flow"] = {{"mach", setup.flow.mach}, {"v0", v0}, {"gamma", setup.flow.gamma}};
@@ -890,6 +892,7 @@ CaseResult CfdCase::run(const Progress& progress) {
     nlohmann::json j;
     j["manta_version"] = core::version();
     j["mesh"] = c.in.mesh.string();
+    if (!c.cfg.companion.empty()) j["companion"] = c.cfg.companion.string();
     j["nodes"] = out_mesh.n_nodes();
     j["processes"] = comm.size();
     j["flow"] = {{"mach", setup.flow.mach},

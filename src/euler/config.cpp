@@ -48,6 +48,7 @@ CfdConfig read(const ConfigNode& root) {
         for (const std::string& k : n->map_keys()) c.markers[k] = role_from(n->child(k));
     }
     if (auto n = top.optional_child("reference")) {
+        c.reference_given = true;
         ConfigMap r(*n);
         c.reference.area = r.number_or("area", 0.0, NumberSpec::non_negative("m^2"));
         c.reference.chord = r.number_or("chord", 1.0, NumberSpec::positive("m"));
@@ -154,8 +155,10 @@ CfdConfig read(const ConfigNode& root) {
             u.integer_or("output_every", c.output_every, NumberSpec::range(0, 1e9, "steps")));
         u.finish();
     }
-    if (auto n = top.optional_child("control_surfaces"))
+    if (auto n = top.optional_child("control_surfaces")) {
+        c.control_surfaces_given = true;
         c.control_surfaces = meshmotion::parse_control_surfaces(*n);
+    }
     top.finish();
     return c;
 }
@@ -168,6 +171,48 @@ CfdConfig read_cfd_config(const std::filesystem::path& file) {
 
 CfdConfig parse_cfd_config(std::string_view text, const std::string& source) {
     return read(ConfigNode::parse_string(text, source));
+}
+
+void apply_companion(CfdConfig& config, const mesh::Companion& companion,
+                     const std::filesystem::path& file) {
+    for (const mesh::MarkerRole& m : companion.markers) {
+        if (config.markers.count(m.name)) continue;
+        if (m.role == "wall")
+            config.markers[m.name] = BoundaryKind::wall;
+        else if (m.role == "farfield")
+            config.markers[m.name] = BoundaryKind::farfield;
+        else if (m.role == "symmetry")
+            config.markers[m.name] = BoundaryKind::symmetry;
+        else
+            throw ConfigError(fmt::format(
+                "{}: markers: '{}' has the role '{}'; expected farfield, wall or symmetry",
+                file.string(), m.name, m.role));
+    }
+    if (!config.reference_given) {
+        config.reference.area = companion.reference.area;
+        config.reference.chord = companion.reference.chord;
+        config.reference.span = companion.reference.span;
+        config.reference.moment_point = companion.reference.moment_point;
+    }
+    if (!config.control_surfaces_given) {
+        config.control_surfaces.clear();
+        for (std::size_t i = 0; i < companion.control_surfaces.size(); ++i) {
+            const mesh::CompanionControlSurface& s = companion.control_surfaces[i];
+            meshmotion::ControlSurfaceSpec spec;
+            spec.mode = s.mode;
+            spec.marker = s.marker;
+            spec.hinge = s.hinge;
+            spec.gain = s.gain;
+            spec.source = fmt::format("{}: control_surfaces[{}]", file.string(), i);
+            config.control_surfaces.push_back(std::move(spec));
+        }
+    }
+    config.companion = file;
+}
+
+void apply_mesh_companion(CfdConfig& config, const std::filesystem::path& mesh_file) {
+    if (const auto c = mesh::find_companion(mesh_file))
+        apply_companion(config, *c, mesh::companion_path(mesh_file));
 }
 
 std::vector<BoundaryKind> resolve_roles(const mesh::Mesh& mesh, const CfdConfig& config) {

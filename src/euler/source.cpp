@@ -50,7 +50,8 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label)
 
 std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path& mesh,
                                                      const std::filesystem::path& config) {
-    const CfdConfig cfg = config.empty() ? CfdConfig{} : read_cfd_config(config);
+    CfdConfig cfg = config.empty() ? CfdConfig{} : read_cfd_config(config);
+    apply_mesh_companion(cfg, mesh);
     CaseMesh m = read_case_mesh(mesh);
     CaseSetup setup = case_setup(cfg);
     setup.roles = resolve_roles(m.mesh, cfg);

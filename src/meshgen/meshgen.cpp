@@ -734,8 +734,8 @@ MeshResult generate_mesh(const aircraft::AircraftDefinition& a, const MeshOption
     c.mesh = out.filename().string();
     c.aircraft = a.file.string();
     c.aircraft_name = a.name;
-    c.model = o.model;
-    c.level = o.level;
+    c.model = std::string(to_string(o.model));
+    c.level = std::string(to_string(o.level));
     for (const auto& m : cad.marker_order) c.markers.push_back({m, cad.roles.at(m)});
     c.reference.aircraft_area = a.reference.area;
     c.reference.area = half ? 0.5 * a.reference.area : a.reference.area;

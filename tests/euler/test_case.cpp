@@ -4,7 +4,9 @@
 /// result bit for bit, with its history and outputs in the folder; a warm start from another
 /// run's restart file converges in fewer iterations; no Mach number, a foreign restart file and
 /// a locked folder are one-line errors; the table campaign's source built from the same files
-/// (`EulerSource::from_files`) gives the driver's coefficients exactly.
+/// (`EulerSource::from_files`) gives the driver's coefficients exactly; the mesh's companion
+/// file (`X.mesh.yaml`, written by `manta mesh`) stands in for the configuration's markers,
+/// reference values and control surfaces where the configuration is silent.
 
 #include <gtest/gtest.h>
 
@@ -200,6 +202,67 @@ TEST(CfdCase, TheTableSourceFromTheSameFilesGivesTheDriversCoefficients) {
     EXPECT_EQ(r.wind.CD, oc.forces.CD);
     EXPECT_EQ(r.body.Cm, oc.forces.Cm());
     EXPECT_EQ(source->stats().iterations, oc.iterations);
+}
+
+/// A companion file for the channel: the walls and reference values of case.yaml, with a
+/// moment point and chord of its own.
+void write_channel_companion(const fs::path& file, double area) {
+    std::ofstream(file) << "schema_version: 1\nmesh: channel.su2\nmodel: half\nlevel: coarse\n"
+                           "markers: {lower: wall, upper: wall}\n"
+                           "reference: {area: "
+                        << area
+                        << ", chord: 0.5, span: 2, moment_point: [0.25, 0, 0]}\n"
+                           "control_surfaces: []\n";
+}
+
+TEST(CfdCase, TheMeshCompanionFileStandsInWhereTheConfigurationIsSilent) {
+    const Folder f("manta-euler-case-companion");
+    parallel::SerialCommunicator comm;
+    // The reference run: everything from the configuration file.
+    std::ofstream(f.dir / "full.yaml")
+        << "markers: {lower: wall, upper: wall}\n"
+           "reference: {area: 0.1, chord: 0.5, span: 2, moment_point: [0.25, 0, 0]}\n"
+           "output: {checkpoint_interval_s: 0}\n";
+    euler::CaseInputs in = f.inputs("full", 1.0);
+    in.config = f.dir / "full.yaml";
+    const euler::CaseResult full = euler::CfdCase(in, comm).run();
+    ASSERT_TRUE(full.outcome.converged) << full.outcome.reason;
+    EXPECT_FALSE(full.summary.contains("companion"));
+
+    // No configuration at all: markers and reference values from the companion.
+    write_channel_companion(f.dir / "channel.mesh.yaml", 0.1);
+    in = f.inputs("companion", 1.0);
+    in.config.clear();
+    const euler::CaseResult comp = euler::CfdCase(in, comm).run();
+    EXPECT_EQ(comp.outcome.forces.CL, full.outcome.forces.CL);
+    EXPECT_EQ(comp.outcome.forces.CMy, full.outcome.forces.CMy);
+    EXPECT_EQ(comp.summary.at("companion").get<std::string>(),
+              (f.dir / "channel.mesh.yaml").string());
+    EXPECT_EQ(comp.summary.at("reference").at("chord").get<double>(), 0.5);
+
+    // The configuration wins: its reference section (area 0.1, chord 1, moment point 0) is
+    // taken whole over the companion's.
+    write_channel_companion(f.dir / "channel.mesh.yaml", 0.05);
+    in = f.inputs("config-wins", 1.0);
+    const euler::CaseResult wins = euler::CfdCase(in, comm).run();
+    EXPECT_EQ(wins.summary.at("reference").at("area").get<double>(), 0.1);
+    EXPECT_EQ(wins.summary.at("reference").at("chord").get<double>(), 1.0);
+
+    // The table source reads the companion too.
+    aero::AeroQuery<double> q;
+    q.mach = 0.5;
+    q.alpha = 1.0 * M_PI / 180.0;
+    write_channel_companion(f.dir / "channel.mesh.yaml", 0.1);
+    const auto source = euler::EulerSource::from_files(f.dir / "channel.su2", {});
+    EXPECT_EQ(source->evaluate(q, {}).wind.CL, full.outcome.forces.CL);
+
+    // A malformed companion is a one-line error naming it.
+    std::ofstream(f.dir / "channel.mesh.yaml") << "schema_version: 1\nmesh: channel.su2\n"
+                                                  "model: quarter\n";
+    const std::string e = error_of([&] { euler::CfdCase(f.inputs("bad", 1.0), comm); });
+    EXPECT_NE(e.find("channel.mesh.yaml"), std::string::npos) << e;
+    EXPECT_NE(e.find("quarter"), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
 }  // namespace

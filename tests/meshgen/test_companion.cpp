@@ -23,8 +23,8 @@ Companion sample() {
     c.mesh = "ranger.su2";
     c.aircraft = "examples/ranger2000/aircraft.yaml";
     c.aircraft_name = "Ranger 2000";
-    c.model = Model::half;
-    c.level = Level::medium;
+    c.model = "half";
+    c.level = "medium";
     c.markers = {
         {"wall", "wall"}, {"elevator", "wall"}, {"farfield", "farfield"}, {"symmetry", "symmetry"}};
     c.reference.area = 7.75;
@@ -64,8 +64,8 @@ TEST(Companion, RoundTrip) {
     const Companion c = read_companion(file);
     EXPECT_EQ(c.mesh, "ranger.su2");
     EXPECT_EQ(c.aircraft_name, "Ranger 2000");
-    EXPECT_EQ(c.model, Model::half);
-    EXPECT_EQ(c.level, Level::medium);
+    EXPECT_EQ(c.model, "half");
+    EXPECT_EQ(c.level, "medium");
     ASSERT_EQ(c.markers.size(), 4u);
     EXPECT_EQ(c.markers[1].name, "elevator");
     EXPECT_EQ(c.markers[2].role, "farfield");

@@ -131,7 +131,7 @@ void check_CompanionFileBesideTheMesh() {
     EXPECT_EQ(m.result.companion_file, scratch("half.mesh.yaml"));
     const auto c = meshgen::read_companion(m.result.companion_file);
     EXPECT_EQ(c.mesh, "half.su2");
-    EXPECT_EQ(c.model, meshgen::Model::half);
+    EXPECT_EQ(c.model, "half");
     EXPECT_DOUBLE_EQ(c.reference.area, 15.5 / 2.0);  // half model: half the reference area
     EXPECT_DOUBLE_EQ(c.reference.aircraft_area, 15.5);
     EXPECT_DOUBLE_EQ(c.reference.chord, 1.545);

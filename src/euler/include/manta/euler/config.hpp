@@ -13,6 +13,7 @@
 
 #include "manta/euler/solver.hpp"
 #include "manta/euler/unsteady.hpp"
+#include "manta/mesh/companion.hpp"
 #include "manta/mesh/mesh.hpp"
 #include "manta/meshmotion/mesh_motion.hpp"
 
@@ -46,13 +47,27 @@ struct CfdConfig {
     int output_every = 0;  ///< `unsteady.output_every`: steps between VTU outputs (0: none)
     /// `control_surfaces:` (meshmotion::parse_control_surfaces, docs/mesh-motion.md).
     std::vector<meshmotion::ControlSurfaceSpec> control_surfaces;
-    std::string source = "<defaults>";  ///< the file, for messages
+    std::string source = "<defaults>";    ///< the file, for messages
+    bool reference_given = false;         ///< the file has a `reference:` section
+    bool control_surfaces_given = false;  ///< the file has a `control_surfaces:` section
+    /// The mesh companion file whose values `apply_companion` took (empty: none).
+    std::filesystem::path companion;
 };
 
 /// Read a configuration file (ConfigError on any bad key or value).
 [[nodiscard]] CfdConfig read_cfd_config(const std::filesystem::path& file);
 /// Parse configuration text; `source` names it in messages.
 [[nodiscard]] CfdConfig parse_cfd_config(std::string_view text, const std::string& source);
+
+/// Take the mesh companion file's values (mesh/companion.hpp, written by `manta mesh`) where the
+/// configuration gives none: the role of every marker it does not name, the whole `reference:`
+/// section when it has none, the `control_surfaces:` when it has none. What the configuration
+/// gives wins. `file` names the companion in messages and in `config.companion`.
+void apply_companion(CfdConfig& config, const mesh::Companion& companion,
+                     const std::filesystem::path& file);
+/// `apply_companion` with the companion beside `mesh_file` when there is one (mesh::
+/// companion_path); nothing otherwise. ConfigError naming the companion when it is malformed.
+void apply_mesh_companion(CfdConfig& config, const std::filesystem::path& mesh_file);
 
 /// One role per marker of `mesh`: the configured role, else the default from the marker's name
 /// (`default_role`). InputError naming the marker and the mesh if a marker has no role, or

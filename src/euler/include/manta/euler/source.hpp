@@ -38,8 +38,9 @@ public:
     EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label);
     /// The source of a mesh file and a `manta cfd` configuration file (empty: the defaults),
     /// set up as `manta cfd` sets up a case (case.hpp: `read_case_mesh`, `case_setup`,
-    /// `resolve_roles`), labelled with the mesh file's name. InputError, ConfigError or IoError
-    /// naming the file.
+    /// `resolve_roles`, and the mesh's companion file where the configuration is silent:
+    /// config.hpp `apply_mesh_companion`), labelled with the mesh file's name. InputError,
+    /// ConfigError or IoError naming the file.
     [[nodiscard]] static std::unique_ptr<EulerSource> from_files(
         const std::filesystem::path& mesh, const std::filesystem::path& config);
 

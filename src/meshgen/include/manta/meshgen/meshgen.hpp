@@ -20,6 +20,7 @@
 
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/geometry/aircraft_geometry.hpp"
+#include "manta/mesh/companion.hpp"
 
 namespace manta::meshgen {
 
@@ -50,51 +51,15 @@ struct MeshOptions {
     double size_factor = 1.0;
 };
 
-/// One wall marker of a control surface and its hinge, as `meshmotion::parse_control_surfaces`
-/// reads it: positive local deflection rotates the surface right-handedly about
-/// hinge[1] - hinge[0] (trailing edge down on horizontal surfaces, toward -y on fins).
-struct CompanionControlSurface {
-    std::string mode;                        ///< the driving control: elevator, aileron, rudder
-    std::string marker;                      ///< wall marker of the moving surface
-    std::array<Eigen::Vector3d, 2> hinge{};  ///< inboard, outboard point [m] (ordered as above)
-    double gain = 1.0;                       ///< local deflection = gain * control
-    std::string control_surface;             ///< name in the aircraft file
-    std::string side;  ///< "right" (defined copy), "left" (mirror) or "" (one copy)
-};
-
-/// A mesh marker and its boundary role (euler::BoundaryKind names: wall, farfield, symmetry).
-struct MarkerRole {
-    std::string name;
-    std::string role;
-};
-
-/// The reference values that make the flow solution's forces coefficients of the whole aircraft.
-struct CompanionReference {
-    /// Area the solver divides by [m^2]: the aircraft's reference area for the full model, half
-    /// of it for the half model (a half model's forces over q * S/2 are the whole aircraft's
-    /// coefficients CL, CD, Cm; forces are not doubled).
-    double area = 0.0;
-    double aircraft_area = 0.0;  ///< the aircraft file's reference.area [m^2]
-    double chord = 0.0;          ///< reference.chord [m]
-    double span = 0.0;           ///< reference.span [m] (whole aircraft, both models)
-    /// Moment point [m]: the aircraft file's moment reference point (that of its aerodynamic
-    /// model and of the vortex lattice), geometry axes.
-    Eigen::Vector3d moment_point = Eigen::Vector3d::Zero();
-    std::string cg_case;                           ///< default mass case
-    Eigen::Vector3d cg = Eigen::Vector3d::Zero();  ///< its CG, geometry axes [m]
-};
-
-/// The companion file of a mesh (docs/formats.md#mesh-companion-file).
-struct Companion {
-    std::string mesh;      ///< mesh file name (as written beside the companion)
-    std::string aircraft;  ///< aircraft file it was made from
-    std::string aircraft_name;
-    Model model = Model::half;
-    Level level = Level::coarse;
-    std::vector<MarkerRole> markers;
-    CompanionReference reference;
-    std::vector<CompanionControlSurface> control_surfaces;
-};
+/// The companion file and its parts live in the mesh module (mesh/companion.hpp).
+using mesh::Companion;
+using mesh::companion_path;
+using mesh::CompanionControlSurface;
+using mesh::CompanionReference;
+using mesh::format_companion;
+using mesh::MarkerRole;
+using mesh::read_companion;
+using mesh::write_companion;
 
 /// The quality report of a generated mesh.
 struct QualityReport {
@@ -145,10 +110,6 @@ struct MeshResult {
     std::vector<std::string> notes;
 };
 
-/// The companion file's path for a mesh file: the extension (.su2, .msh, .cgns) replaced by
-/// `.mesh.yaml` (ranger.su2 -> ranger.mesh.yaml).
-[[nodiscard]] std::filesystem::path companion_path(const std::filesystem::path& mesh_file);
-
 /// Check that the aircraft's shape can be built; ConfigError naming the aircraft file, the key
 /// and its value for sections out of order, a control surface outside its surface, a degenerate
 /// or self-intersecting airfoil contour, overlapping twin copies, a fuselage station of zero size
@@ -169,12 +130,5 @@ void check_buildable(const aircraft::AircraftDefinition& aircraft);
                                            const std::vector<std::array<long long, 4>>& tets,
                                            const std::vector<std::array<long long, 3>>& faces,
                                            double sliver_min_deg = 5.0);
-
-/// Companion file text (YAML) and writer (atomic).
-[[nodiscard]] std::string format_companion(const Companion& c);
-void write_companion(const std::filesystem::path& file, const Companion& c);
-/// Read a companion file: ConfigError naming file, line, key for anything malformed or unknown.
-/// Its `control_surfaces:` list can also be handed to meshmotion::parse_control_surfaces as is.
-[[nodiscard]] Companion read_companion(const std::filesystem::path& file);
 
 }  // namespace manta::meshgen
