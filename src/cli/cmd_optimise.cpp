@@ -126,6 +126,7 @@ nlohmann::json solution_fields(const optimal::Solution& s, const optimal::Mesh& 
     nlohmann::json j = {
         {"status", optimal::to_string(s.status)},
         {"converged", s.converged()},
+        {"resolved", s.resolved()},
         {"ipopt_status", s.status_text},
         {"final_time", s.final_time},
         {"objective", s.objective},
@@ -324,6 +325,7 @@ int run_manoeuvre(const OptimiseOptions& o) {
         std::fputs(optimal::failure_report(s, so.failure_csv).c_str(), stderr);
         return 1;
     }
+    if (!s.resolved()) fmt::print(stderr, "warning: {}: {}\n", spec.name, s.status_text);
     return 0;
 }
 
@@ -452,6 +454,7 @@ void add_optimise(CLI::App& app, Action& action) {
                 std::fputs(optimal::failure_report(s, so.failure_csv).c_str(), stderr);
                 return 1;
             }
+            if (!s.resolved()) fmt::print(stderr, "warning: {}\n", s.status_text);
             return 0;
         };
     });

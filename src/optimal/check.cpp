@@ -24,10 +24,16 @@ DerivativeCheck check_derivatives(const Model& model, const Mesh& mesh, const Gu
     tr.scaling(z.data(), vs, rs, os);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    // Perturb every free variable, kept inside its bounds: a margin of 1e-3 of the interval
+    // from a bound when both are finite, of 1e-3 of the variable's scale from a bound that is
+    // alone (an absent bound is a sentinel of 1e20 here, and IPOPT takes 1e19 and beyond as none).
     for (int c = 0; c < n; ++c) {
         if (xl[c] == xu[c]) continue;
-        const double lo = xl[c] + 1e-3 * (xu[c] - xl[c]);
-        const double hi = xu[c] - 1e-3 * (xu[c] - xl[c]);
+        const bool has_lo = xl[c] > -1e19, has_hi = xu[c] < 1e19;  // IPOPT: beyond 1e19 none
+        const double margin =
+            has_lo && has_hi ? 1e-3 * (xu[c] - xl[c]) : 1e-3 * std::max(vs(c), 1e-12);
+        const double lo = has_lo ? xl[c] + margin : -kInf;
+        const double hi = has_hi ? xu[c] - margin : kInf;
         z[c] =
             std::clamp(z[c] + perturbation * vs(c) * uni(rng), std::min(lo, hi), std::max(lo, hi));
     }

@@ -1,6 +1,7 @@
 /// @file nlp.cpp
 /// The IPOPT adapter (the only file that sees IPOPT) and `solve`.
 
+#include <fmt/format.h>
 #include <time.h>
 #include <coin/IpIpoptApplication.hpp>
 #include <coin/IpSolveStatistics.hpp>
@@ -355,6 +356,16 @@ Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
     sol.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     if (options.resimulate) {
         sol.resimulation = resimulate(model, sol, options.resimulation_tolerance);
+        const Resimulation& rs = sol.resimulation;
+        if (sol.converged() && rs.done && options.resolution_limit > 0.0 &&
+            rs.max_scaled_error > options.resolution_limit) {
+            sol.status = SolveStatus::solved_unresolved;
+            sol.status_text = fmt::format(
+                "{}, but not resolved: the re-simulated controls depart from the collocated "
+                "states by {:.3g} (scaled, limit {:g}); refine the mesh (more nodes or segments "
+                "where the controls jump) and solve again from this solution",
+                sol.status_text, rs.max_scaled_error, options.resolution_limit);
+        }
     }
     if (!sol.converged() && !options.failure_csv.empty()) write_csv(sol, options.failure_csv);
     return sol;

@@ -65,13 +65,23 @@ void ProblemInfo::validate() const {
         throw InputError(fmt::format("{}: {} final-state bounds, expected {} (one per state)", who,
                                      final_states.size(), states.size()));
     }
+    // Boundary bounds must meet the state's own bounds: the NLP takes their intersection.
+    auto check_meets = [&](const Bounds& b, const Variable& v, const char* which) {
+        if (b.lower > v.upper || b.upper < v.lower)
+            throw InputError(fmt::format(
+                "{}: {} {} in [{:g}, {:g}] lies outside the state's bounds [{:g}, {:g}]; "
+                "expected a {} value within them",
+                who, which, v.name, b.lower, b.upper, v.lower, v.upper, which));
+    };
     for (std::size_t r = 0; r < initial_states.size(); ++r) {
         check_bounds(who + " initial " + states[r].name, initial_states[r].lower,
                      initial_states[r].upper);
+        check_meets(initial_states[r], states[r], "initial");
     }
     for (std::size_t r = 0; r < final_states.size(); ++r) {
         check_bounds(who + " final " + states[r].name, final_states[r].lower,
                      final_states[r].upper);
+        check_meets(final_states[r], states[r], "final");
     }
 }
 
@@ -228,6 +238,8 @@ std::string to_string(SolveStatus status) {
             return "solved";
         case SolveStatus::solved_acceptable:
             return "solved_acceptable";
+        case SolveStatus::solved_unresolved:
+            return "solved_unresolved";
         case SolveStatus::infeasible:
             return "infeasible";
         case SolveStatus::iteration_limit:

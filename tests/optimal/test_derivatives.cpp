@@ -105,4 +105,28 @@ TEST(NlpDerivatives, LagrangeParametersEventsFreeInitialTime) {
     expect_derivatives(*m, free_mesh({5, 6, 4}, {0.0, 0.25, 0.6, 1.0}), g, 2e-6);
 }
 
+/// The same problem with bounds on one side only (states, control, parameter, final time): the
+/// check's test point must stay near the guess, not move to the absent bound's sentinel.
+struct OneSidedBounds : AllFeatures {
+    ProblemInfo info() const {
+        ProblemInfo p = AllFeatures::info();
+        p.name = "one-sided-bounds";
+        p.states = {{"a", 0.0, kInf, 0}, {"b", -kInf, 5, 0}};
+        p.controls = {{"c", -kInf, 2, 0}};
+        p.parameters = {{"k", 0.1, kInf, 0}};
+        p.final_time = {1.5, kInf};
+        return p;
+    }
+};
+
+TEST(NlpDerivatives, BoundsOnOneSideOnlyGiveNoFalseAlarm) {
+    const auto m = make_model(OneSidedBounds{});
+    const Guess g =
+        Guess::linear(0.1, 2.5, Eigen::Vector2d(0.5, 0.2), Eigen::Vector2d(0.8, 0.3),
+                      Eigen::VectorXd::Constant(1, 0.3), Eigen::VectorXd::Constant(1, -0.4),
+                      Eigen::VectorXd::Constant(1, 1.1));
+    expect_derivatives(*m, Mesh::uniform(1, 9), g, 2e-6);
+    expect_derivatives(*m, free_mesh({5, 6, 4}, {0.0, 0.25, 0.6, 1.0}), g, 2e-6);
+}
+
 }  // namespace

@@ -197,4 +197,59 @@ TEST(Solver, CsvHasOneRowPerNode) {
     fs::remove(f);
 }
 
+/// A fixed initial state outside the state's own bounds is rejected up front (naming the state
+/// and both intervals), not left to fail inside IPOPT.
+struct InitialOutsideBounds {
+    ProblemInfo info() const {
+        ProblemInfo p;
+        p.name = "outside";
+        p.states = {{"x", 0.0, 1.0, 0}};
+        p.controls = {{"u", -1.0, 1.0, 0}};
+        p.initial_states = {fixed(2.0)};
+        return p;
+    }
+    template <class T>
+    void dynamics(std::span<const T>, std::span<const T> u, std::span<const T>, const T&,
+                  std::span<T> xd) const {
+        xd[0] = u[0];
+    }
+};
+
+TEST(Solver, AnInitialStateOutsideTheStateBoundsIsRejected) {
+    try {
+        (void)make_model(InitialOutsideBounds{});
+        FAIL() << "no error";
+    } catch (const manta::InputError& e) {
+        const std::string w = e.what();
+        EXPECT_NE(w.find("initial x in [2, 2] lies outside the state's bounds [0, 1]"),
+                  std::string::npos)
+            << w;
+    }
+}
+
+TEST(Solver, AnUnresolvedOptimumIsReportedAsSuch) {
+    // The minimum time to climb (Bryson, Desai & Hoffman 1969; optimum 321.11 s, see
+    // test_problems_validation.cpp) on one segment of 10 points from the crude linear guess:
+    // IPOPT converges to a badly resolved point whose controls, integrated a posteriori, depart
+    // from the collocated states by about 0.9 (scaled); 40 points resolve it (resimulation
+    // below 1e-2 there).
+    const MinTimeToClimb p;
+    const auto m = make_model(p);
+    const Solution coarse = solve(*m, Mesh::uniform(1, 10), p.guess());
+    ASSERT_TRUE(coarse.converged()) << coarse.status_text;
+    ASSERT_TRUE(coarse.resimulation.done);
+    EXPECT_GT(coarse.resimulation.max_scaled_error, 0.1);
+    EXPECT_EQ(coarse.status, SolveStatus::solved_unresolved);
+    EXPECT_FALSE(coarse.resolved());
+    EXPECT_EQ(to_string(coarse.status), "solved_unresolved");
+    EXPECT_NE(coarse.status_text.find("refine the mesh"), std::string::npos) << coarse.status_text;
+    // Without a limit the same solve is reported solved.
+    SolverOptions o;
+    o.resolution_limit = 0.0;
+    EXPECT_EQ(solve(*m, Mesh::uniform(1, 10), p.guess(), o).status, SolveStatus::solved);
+    // Resolved on 40 points.
+    const Solution fine = solve(*m, Mesh::uniform(1, 40), p.guess());
+    EXPECT_TRUE(fine.resolved()) << fine.status_text;
+}
+
 }  // namespace

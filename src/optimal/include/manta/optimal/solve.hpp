@@ -113,6 +113,10 @@ struct SolverOptions {
     /// Re-simulate the controls a posteriori (Solution::resimulation).
     bool resimulate = true;
     double resimulation_tolerance = 1e-10;  ///< relative and absolute tolerance of the integrator
+    /// A converged solution whose re-simulation departs from it by more than this (the
+    /// resimulation's max_scaled_error: |x_sim - x| / scale at some node) is reported as
+    /// `solved_unresolved`: the mesh does not resolve the optimum (0 or less: never).
+    double resolution_limit = 0.1;
     /// When not empty: on failure the best iterate is written there as CSV.
     std::filesystem::path failure_csv;
     int n_reported_violations = 10;  ///< how many of the most violated constraints to keep
@@ -122,10 +126,15 @@ struct SolverOptions {
 enum class SolveStatus {
     solved,             ///< converged to the requested tolerance
     solved_acceptable,  ///< converged to IPOPT's acceptable tolerance
-    infeasible,         ///< IPOPT detected (local) infeasibility
-    iteration_limit,    ///< max iterations or CPU time reached
-    stopped,            ///< stopped by the progress callback
-    failed              ///< any other IPOPT failure (restoration failure, NaN, ...)
+    /// IPOPT converged, but the controls integrated a posteriori depart from the collocated
+    /// states by more than `SolverOptions::resolution_limit`: the optimum is not resolved by
+    /// the mesh (too few nodes where a control jumps or chatters); refine and solve again from
+    /// this solution, or check the model for a control it cannot follow.
+    solved_unresolved,
+    infeasible,       ///< IPOPT detected (local) infeasibility
+    iteration_limit,  ///< max iterations or CPU time reached
+    stopped,          ///< stopped by the progress callback
+    failed            ///< any other IPOPT failure (restoration failure, NaN, ...)
 };
 
 /// A constraint and how far it is from its bounds.
@@ -190,8 +199,15 @@ public:
     int n_jacobian_nonzeros = 0;        ///< constraint Jacobian nonzeros
     int n_hessian_nonzeros = 0;         ///< Hessian nonzeros (lower triangle; 0 with L-BFGS)
 
-    /// True for solved and solved_acceptable.
+    /// True when IPOPT converged: solved, solved_acceptable and solved_unresolved (the last is
+    /// a converged NLP whose answer the mesh does not resolve: see `resolved`).
     [[nodiscard]] bool converged() const {
+        return status == SolveStatus::solved || status == SolveStatus::solved_acceptable ||
+               status == SolveStatus::solved_unresolved;
+    }
+    /// True for solved and solved_acceptable: converged, and the re-simulation (when done)
+    /// within the resolution limit.
+    [[nodiscard]] bool resolved() const {
         return status == SolveStatus::solved || status == SolveStatus::solved_acceptable;
     }
     /// State at time t by the Lagrange polynomial of the segment holding t.
