@@ -18,8 +18,10 @@
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
+#include "manta/core/process.hpp"
 #include "manta/core/units.hpp"
 #include "manta/core/version.hpp"
+#include "manta/euler/launched_source.hpp"
 #include "manta/euler/source.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
 #include "manta/tables/analytic_source.hpp"
@@ -29,6 +31,7 @@
 #include "manta/tables/store.hpp"
 #include "manta/vlm/source.hpp"
 #include "manta/vlm/viscous.hpp"
+#include "subprocess.hpp"
 #include "svg_plot.hpp"
 
 namespace manta::cli {
@@ -175,13 +178,24 @@ nlohmann::json report_json(const tables::ScenarioReport& r) {
 /// The Euler source of a campaign: the mesh and the `manta cfd` configuration, set up as
 /// `manta cfd` sets up a case (`euler::EulerSource::from_files`); the flow condition comes from
 /// each sample.
-std::unique_ptr<aero::AeroSource> make_euler_source(const tables::SourceSpec& spec) {
+std::unique_ptr<aero::AeroSource> make_euler_source(const tables::SourceSpec& spec,
+                                                    const std::filesystem::path& out) {
     if (!std::filesystem::exists(spec.mesh))
         throw ConfigError(
             fmt::format("{}: mesh file '{}' does not exist; expected a mesh that "
                         "manta cfd reads (SU2, gmsh, CGNS)",
                         spec.where, spec.mesh.string()));
-    return euler::EulerSource::from_files(spec.mesh, spec.cfd_config);
+    if (!spec.launched) return euler::EulerSource::from_files(spec.mesh, spec.cfd_config);
+    // Each sample a `manta cfd` job through the user's launcher, its run folder under OUT/cfd.
+    euler::LaunchOptions o;
+    o.launcher = core::split_command(spec.launcher, spec.where + ": launcher");
+    o.executable = self_executable();
+    o.work_dir = std::filesystem::absolute(out / "cfd");
+    return std::make_unique<euler::LaunchedEulerSource>(
+        std::filesystem::absolute(spec.mesh),
+        spec.cfd_config.empty() ? std::filesystem::path{}
+                                : std::filesystem::absolute(spec.cfd_config),
+        std::move(o));
 }
 
 int run_tables(const TablesArgs& a) {
@@ -197,7 +211,7 @@ int run_tables(const TablesArgs& a) {
     if (campaign.source.type == tables::SourceType::analytic) {
         source = std::make_unique<tables::AnalyticSource>(campaign.source.analytic);
     } else if (campaign.source.type == tables::SourceType::euler) {
-        source = make_euler_source(campaign.source);
+        source = make_euler_source(campaign.source, out);
     } else {
         const auto& spec = campaign.source;
         if (!std::filesystem::exists(spec.aircraft))
@@ -286,7 +300,14 @@ int run_tables(const TablesArgs& a) {
                      clock_text(p.elapsed_s).c_str(), clock_text(p.remaining_s).c_str());
     };
 
-    const tables::CampaignResult result = tables::run_campaign(campaign, *source, *store, ro);
+    // samples.csv also when the campaign stops with an error: its messages point the user there.
+    tables::CampaignResult result;
+    try {
+        result = tables::run_campaign(campaign, *source, *store, ro);
+    } catch (const Error&) {
+        core::write_file_atomic(out / "samples.csv", tables::samples_csv(store->samples()));
+        throw;
+    }
     const aero::AeroDatabase db = tables::make_database(campaign, result, source->name());
 
     std::vector<std::string> written;

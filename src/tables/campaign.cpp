@@ -186,6 +186,10 @@ SourceSpec read_source(ConfigMap& m, const std::filesystem::path& base) {
     if (s.type == SourceType::euler) {
         s.mesh = resolve(m.string("mesh"));
         if (m.has("config")) s.cfd_config = resolve(m.string("config"));
+        if (m.has("launcher")) {
+            s.launcher = m.string("launcher");
+            s.launched = true;
+        }
     } else if (s.type == SourceType::vlm) {
         s.aircraft = resolve(m.string("aircraft"));
         if (m.has("lattice")) {

@@ -29,8 +29,13 @@ struct SourceSpec {
     bool viscous = true;             ///< vlm: add the viscous drag build-up
     std::filesystem::path mesh;      ///< euler: the mesh file, resolved like `aircraft`
     std::filesystem::path cfd_config;  ///< euler: `manta cfd` configuration (empty: defaults)
-    AnalyticParameters analytic;       ///< analytic: the test function's parameters
-    std::string where;                 ///< "file:line: key 'source'" for messages
+    /// euler: the command each sample's `manta cfd` job is started through ("mpirun -np 4",
+    /// "srun -n 64"; split into words as a shell would, without expansions); empty: every
+    /// sample solved in process (docs/tables.md#launching-euler-samples).
+    std::string launcher;
+    bool launched = false;  ///< euler: `launcher:` was given (an empty string: jobs, no launcher)
+    AnalyticParameters analytic;  ///< analytic: the test function's parameters
+    std::string where;            ///< "file:line: key 'source'" for messages
 };
 
 /// How the adaptive static campaign chooses its next samples.
