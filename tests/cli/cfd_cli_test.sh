@@ -116,43 +116,6 @@ PY
 then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: euler table samples"; fi
 check "euler tables rerun" 0 "$manta" tables --campaign "$work/campaign.yaml" --out "$work/tab" --json
 contains "euler tables rerun reuses" "$work/out.txt" '"evaluated": 0'
-# The same campaign with every sample a `manta cfd` job through a launcher (docs/tables.md,
-# "Launching Euler samples"): the same coefficients as in process (2e-5; 2 processes when mpirun
-# is there), a run folder per sample, a rerun that starts no job, a kill -9 of the campaign
-# that a rerun completes, and a launcher that fails: the sample failed with a one-line error.
-if [ -n "$mpiexec" ]; then launcher="$mpiexec ${mpiflags[*]} -np 2"; else launcher=""; fi
-sed "s|^source: .*|source: {type: euler, mesh: $mesh, launcher: \"$launcher\"}|" "$work/campaign.yaml" > "$work/campaign_jobs.yaml"
-check "tables through a launcher" 0 "$manta" tables --campaign "$work/campaign_jobs.yaml" --out "$work/tabj" --json
-contains "launched tables evaluated 4" "$work/out.txt" '"evaluated": 4'
-n_folders=$(find "$work/tabj/cfd" -name summary.json | wc -l)
-if [ "$n_folders" -eq 4 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: launched tables: $n_folders run folders, expected 4"; fi
-contains "a job's log" "$(find "$work/tabj/cfd" -name job.log | head -1)" "CL"
-if python3 - "$work/tab/samples.csv" "$work/tabj/samples.csv" <<'PY'
-import csv, sys
-a, b = ({(r["alpha_deg"], r["mach"]): r for r in csv.DictReader(open(f)) if r["status"] == "done"} for f in sys.argv[1:3])
-assert a.keys() == b.keys() and len(a) == 4, (a.keys(), b.keys())
-for k in a:
-    for c in ("CL", "CD", "Cm"):
-        d = abs(float(a[k][c]) - float(b[k][c]))
-        assert d < 2e-5, (k, c, a[k][c], b[k][c])
-print("in process and launched agree to 2e-5 on", len(a), "samples")
-PY
-then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: launched samples differ from in-process ones"; fi
-check "launched tables rerun" 0 "$manta" tables --campaign "$work/campaign_jobs.yaml" --out "$work/tabj" --json
-contains "launched rerun reuses" "$work/out.txt" '"evaluated": 0'
-# kill -9 the campaign while its first job runs; the rerun finishes with 4 samples.
-"$manta" tables --campaign "$work/campaign_jobs.yaml" --out "$work/tabk" >/dev/null 2>&1 &
-pid=$!
-for _ in $(seq 1 600); do [ -n "$(find "$work/tabk/cfd" -name job.log 2>/dev/null)" ] && break; sleep 0.05; done
-sleep 1; kill -9 "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
-check "launched tables after kill -9" 0 "$manta" tables --campaign "$work/campaign_jobs.yaml" --out "$work/tabk" --json
-contains "after kill -9: 4 done" "$work/tabk/samples.csv" "done"
-n_done=$(grep -c ",done," "$work/tabk/samples.csv" || true)
-if [ "$n_done" -eq 4 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: after kill -9: $n_done samples done, expected 4"; fi
-sed "s|^source: .*|source: {type: euler, mesh: $mesh, launcher: \"false\"}|" "$work/campaign.yaml" > "$work/campaign_false.yaml"
-check "a launcher that fails" 1 "$manta" tables --campaign "$work/campaign_false.yaml" --out "$work/tabf"
-contains "failed launcher: too few samples" "$work/err.txt" "0 done samples \(4 failed\)"
-contains "failed launcher: the error names the status and log" "$work/tabf/samples.csv" "exited with status 1 \(log .*job.log"
 printf 'controls:\n  elevator: {deflection_deg: [-5, 0, 5]}\n' >> "$work/campaign.yaml"
 check "euler tables with controls" 2 "$manta" tables --campaign "$work/campaign.yaml" --out "$work/tab2"
 contains "euler controls message" "$work/err.txt" "campaign.yaml:10: key 'controls'.*static coefficients only"
