@@ -189,6 +189,18 @@ std::size_t SteadySolver::memory_bytes() const noexcept {
     return static_cast<std::size_t>(U_.size()) * sizeof(double) + step_.memory_bytes();
 }
 
+void SteadySolver::set_rotating_frame(const RotatingFrame& frame) {
+    frame_ = frame;
+    if (!frame_.active()) {
+        step_.set_grid_fluxes(nullptr);
+        return;
+    }
+    const Domain& d = step_.domain();
+    rotation_grid_fluxes(*d.mesh, *d.dual, frame_, frame_g_);
+    rotation_node_velocities(*d.mesh, frame_, frame_v_);
+    step_.set_grid_fluxes(&frame_g_, &frame_v_);
+}
+
 void SteadySolver::set_iteration_state(const IterationState& s) {
     it_ = s;
     step_.freeze_limiter(s.limiter_frozen);
@@ -201,8 +213,14 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
     const StopRule rule = [&s](const StepStatus& st) { return steady_stop(s, st); };
     SolveOutcome out;
     step_.begin(it_);
+    const bool rotating = frame_.active();
+    StepTerms terms;
+    if (rotating) terms.source = &frame_S_;
+    const Vec3 u_inf = step_.free_stream_primitive().segment<3>(1);
+    const Domain& d = step_.domain();
     while (true) {
-        StepOutcome so = step_.step(U_, it_, rule);
+        if (rotating) rotation_source(U_, d.dual->dual_volumes, frame_, u_inf, d.n_owned, frame_S_);
+        StepOutcome so = step_.step(U_, it_, rule, terms);
         if (so.result == StepResult::backed_off) continue;
         out.residual_drop = so.status.drop;
         out.forces = so.record.forces;

@@ -5,8 +5,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <span>
 
 #include "manta/core/error.hpp"
 #include "manta/core/frames.hpp"
@@ -16,8 +19,34 @@
 
 namespace manta::euler {
 
-EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label)
-    : mesh_(std::move(mesh)), dual_(mesh::compute_dual_metrics(mesh_)), setup_(std::move(setup)) {
+namespace {
+
+constexpr double deg_per_rad = 57.29577951308232;
+
+/// The motion MeshMotion is built with: two samples of zeros, one mode column per mode of the
+/// surfaces (elevator, aileron and rudder always).
+aero::Motion still_motion(const std::vector<meshmotion::ControlSurfaceSpec>& surfaces) {
+    aero::Motion m;
+    m.t = {0.0, 1.0};
+    for (auto& c : m.position) c = {0.0, 0.0};
+    for (auto& c : m.angles) c = {0.0, 0.0};
+    std::vector<std::string> names{"elevator", "aileron", "rudder"};
+    for (const auto& s : surfaces)
+        if (std::find(names.begin(), names.end(), s.mode) == names.end()) names.push_back(s.mode);
+    for (auto& n : names) m.add_mode(n, {0.0, 0.0});
+    return m;
+}
+
+}  // namespace
+
+EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label,
+                         std::vector<meshmotion::ControlSurfaceSpec> control_surfaces,
+                         std::string config_label)
+    : mesh_(std::move(mesh)),
+      dual_(mesh::compute_dual_metrics(mesh_)),
+      setup_(std::move(setup)),
+      surfaces_(std::move(control_surfaces)),
+      config_label_(std::move(config_label)) {
     if (static_cast<int>(setup_.roles.size()) != mesh_.n_markers())
         throw InputError(fmt::format("{}: {} boundary roles for {} markers", label,
                                      setup_.roles.size(), mesh_.n_markers()));
@@ -46,6 +75,23 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label)
         o.gradient == GradientMethod::least_squares ? "lsq" : "gg", o.limiter, o.venkatakrishnan_k,
         o.flux.entropy_fix, setup_.flow.gamma, s.residual_drop, r.area, r.chord, r.span,
         r.moment_point.x(), r.moment_point.y(), r.moment_point.z());
+    // Rotation rates in the rotating frame (rotating_frame.hpp) and deflections by the control
+    // surfaces below: samples of sources before them (which refused both) carry other text.
+    fingerprint_ += " rates=rotating-frame-1 surfaces=[";
+    for (const auto& c : surfaces_)
+        fingerprint_ += fmt::format("{}:{}:{},{},{}:{},{},{}:{}:{}:{}:{}:{};", c.mode, c.marker,
+                                    c.hinge[0].x(), c.hinge[0].y(), c.hinge[0].z(), c.hinge[1].x(),
+                                    c.hinge[1].y(), c.hinge[1].z(), c.gain,
+                                    c.hinge_tolerance.value_or(-1), c.hinge_blend.value_or(-1),
+                                    c.edge_blend.value_or(-1), c.cutoff.value_or(-1));
+    fingerprint_ += "]";
+    if (!surfaces_.empty()) {
+        meshmotion::MotionPlacement placement;
+        placement.reference_point = r.moment_point;
+        placement.motion_source = config_label_;
+        motion_ = std::make_unique<meshmotion::MeshMotion>(mesh_, still_motion(surfaces_),
+                                                           placement, surfaces_);
+    }
 }
 
 std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path& mesh,
@@ -56,7 +102,8 @@ std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path
     CaseSetup setup = case_setup(cfg);
     setup.roles = resolve_roles(m.mesh, cfg);
     return std::make_unique<EulerSource>(std::move(m.mesh), std::move(setup),
-                                         mesh.filename().string());
+                                         mesh.filename().string(), cfg.control_surfaces,
+                                         cfg.source);
 }
 
 EulerSourceStats EulerSource::stats() const {
@@ -66,34 +113,97 @@ EulerSourceStats EulerSource::stats() const {
 
 aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
                                          const aero::FlowConditions& /*conditions*/) const {
-    if (q.p_hat != 0.0 || q.q_hat != 0.0 || q.r_hat != 0.0 || q.alpha_dot_hat != 0.0 ||
-        q.beta_dot_hat != 0.0)
-        throw InputError(
-            "euler source: rotation rates need a moving mesh, which this version's Euler solver "
-            "does not have; take the dynamic derivatives from the vortex-lattice source");
-    if (q.elevator != 0.0 || q.aileron != 0.0 || q.rudder != 0.0)
-        throw InputError(
-            "euler source: control deflections need a deforming mesh, which this version's Euler "
-            "solver does not have; take the control increments from the vortex-lattice source");
+    if (q.alpha_dot_hat != 0.0 || q.beta_dot_hat != 0.0)
+        throw InputError(fmt::format(
+            "euler source: alpha_dot_hat {:g}, beta_dot_hat {:g}: the steady evaluation gives "
+            "the rotation rates p_hat, q_hat, r_hat only; expected 0 (the alpha_dot and beta_dot "
+            "derivatives need a time-accurate solution)",
+            q.alpha_dot_hat, q.beta_dot_hat));
+    const std::array<double, 3> rates{q.p_hat, q.q_hat, q.r_hat};
+    const std::array<double, 3> deflection{q.elevator, q.aileron, q.rudder};
+    static constexpr std::array<const char*, 3> mode_names{"elevator", "aileron", "rudder"};
+
+    // Control deflections: each surface by gain times its mode's deflection.
+    std::vector<double> delta(surfaces_.size(), 0.0);
+    bool deflected = false;
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (deflection[k] == 0.0) continue;
+        if (!std::isfinite(deflection[k]))
+            throw InputError(fmt::format("euler source: {} deflection {}; expected a finite angle",
+                                         mode_names[k], deflection[k]));
+        bool found = false;
+        for (std::size_t s = 0; s < surfaces_.size(); ++s)
+            if (surfaces_[s].mode == mode_names[k]) {
+                delta[s] = surfaces_[s].gain * deflection[k];
+                found = true;
+            }
+        if (!found)
+            throw InputError(fmt::format(
+                "euler source: the query deflects the {} by {:.4g} deg, but {} has no control "
+                "surface of mode '{}'; expected a control_surfaces entry with mode: {}",
+                mode_names[k], deflection[k] * deg_per_rad, config_label_, mode_names[k],
+                mode_names[k]));
+        deflected = true;
+    }
+    // The deflected geometry: this evaluation's own coordinates and metrics.
+    std::optional<mesh::Mesh> own_mesh;
+    std::optional<mesh::DualMetrics> own_dual;
+    if (deflected) {
+        Eigen::Matrix3Xd x;
+        motion_->deformed(delta, x);
+        own_mesh.emplace(mesh_);
+        own_mesh->set_coordinates(
+            std::span<const double>(x.data(), static_cast<std::size_t>(x.size())));
+        own_dual.emplace(dual_);
+        mesh::update_dual_metrics(*own_mesh, *own_dual);
+        const auto& v = own_dual->dual_volumes;
+        const auto bad = std::min_element(v.begin(), v.end());
+        if (bad != v.end() && !(*bad > 0.0))
+            throw InputError(fmt::format(
+                "euler source: deflections elevator {:.4g}, aileron {:.4g}, rudder {:.4g} deg "
+                "fold the mesh at node {} (dual volume {:.3g} m^3); expected deflections the "
+                "control surfaces of {} can take",
+                q.elevator * deg_per_rad, q.aileron * deg_per_rad, q.rudder * deg_per_rad,
+                bad - v.begin(), *bad, config_label_));
+    }
+    const mesh::Mesh& m = deflected ? *own_mesh : mesh_;
+    const mesh::DualMetrics& dual = deflected ? *own_dual : dual_;
+
     CaseSetup setup = setup_;
     setup.flow.mach = q.mach;
     setup.flow.alpha = q.alpha;
     setup.flow.beta = q.beta;
-    const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
+    const Domain domain{&m, &dual, m.n_nodes(), &halo_};
     SteadySolver solver(domain, comm_, setup);
+    if (q.p_hat != 0.0 || q.q_hat != 0.0 || q.r_hat != 0.0) {
+        // Body-axis rates from the non-dimensional ones (free-stream speed = Mach in the
+        // solver's units), turned into mesh axes.
+        const ReferenceValues& ref = setup_.reference;
+        const double V = q.mach;
+        const Vec3 body(q.p_hat * 2.0 * V / ref.span, q.q_hat * 2.0 * V / ref.chord,
+                        q.r_hat * 2.0 * V / ref.span);
+        RotatingFrame frame;
+        frame.omega = core::geometry_from_body(body);
+        frame.center = ref.moment_point;
+        solver.set_rotating_frame(frame);
+    }
 
-    // Warm start from the nearest converged solution (distance in degrees and Mach / 0.05).
+    // Warm start from the nearest converged solution (distance in degrees, Mach / 0.05 and
+    // rates / 0.01).
     bool warm = false;
     {
         std::lock_guard lock(mutex_);
         const Cached* best = nullptr;
         double best_d = std::numeric_limits<double>::infinity();
         for (const Cached& c : cache_) {
-            const double d =
-                std::hypot((c.alpha - q.alpha) * 57.29577951308232,
-                           (c.beta - q.beta) * 57.29577951308232, (c.mach - q.mach) / 0.05);
-            if (d < best_d) {
-                best_d = d;
+            double d2 = std::pow((c.alpha - q.alpha) * deg_per_rad, 2) +
+                        std::pow((c.beta - q.beta) * deg_per_rad, 2) +
+                        std::pow((c.mach - q.mach) / 0.05, 2);
+            for (std::size_t k = 0; k < 3; ++k)
+                d2 += std::pow((c.rates[k] - rates[k]) / 0.01, 2) +
+                      std::pow((c.deflection[k] - deflection[k]) * deg_per_rad, 2);
+            if (d2 < best_d) {
+                best_d = d2;
                 best = &c;
             }
         }
@@ -107,16 +217,17 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
     const SolveOutcome oc = solver.solve();
     if (!oc.converged)
         throw ConvergenceError(fmt::format(
-            "euler source at M {:g}, alpha {:.4g} deg, beta {:.4g} "
-            "deg: {}",
-            q.mach, q.alpha * 57.29577951308232, q.beta * 57.29577951308232, oc.reason));
+            "euler source at M {:g}, alpha {:.4g} deg, beta {:.4g} deg, p_hat {:g}, q_hat {:g}, "
+            "r_hat {:g}, elevator {:.4g} deg, aileron {:.4g} deg, rudder {:.4g} deg: {}",
+            q.mach, q.alpha * deg_per_rad, q.beta * deg_per_rad, q.p_hat, q.q_hat, q.r_hat,
+            q.elevator * deg_per_rad, q.aileron * deg_per_rad, q.rudder * deg_per_rad, oc.reason));
     {
         std::lock_guard lock(mutex_);
         ++stats_.evaluations;
         stats_.warm_starts += warm ? 1 : 0;
         stats_.iterations += oc.iterations;
-        cache_.push_back({q.mach, q.alpha, q.beta, solver.iteration_state().peak_log10_residual,
-                          solver.state()});
+        cache_.push_back({q.mach, q.alpha, q.beta, rates, deflection,
+                          solver.iteration_state().peak_log10_residual, solver.state()});
         if (cache_.size() > cache_size_) cache_.erase(cache_.begin());
     }
     const ForceCoefficients& f = oc.forces;

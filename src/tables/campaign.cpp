@@ -285,16 +285,9 @@ Campaign parse_campaign(std::string_view text, const std::string& source,
         c.static_table.beta = default_beta;
         c.static_table.kriging.seed = c.static_table.seed;
     }
-    // The Euler solver has no moving or deforming meshes yet: no deflections, no rotation rates.
-    const char* euler_static_only =
-        "no '{}' section with source type euler, which gives static coefficients only (source "
-        "type vlm fills it)";
+    // Every source fills every section: the Euler source deforms its mesh by the CFD
+    // configuration's control surfaces and solves rotation rates in the rotating frame.
     if (root.has("controls")) {
-        if (c.source.type == SourceType::euler)
-            root.fail("controls",
-                      "needs control-surface deflections, which the euler source does "
-                      "not model (no moving or deforming meshes yet)",
-                      fmt::format(fmt::runtime(euler_static_only), "controls"));
         ConfigMap ctl = root.map("controls");
         for (const aero::Axis a : {aero::Axis::elevator, aero::Axis::aileron, aero::Axis::rudder}) {
             const std::string key(aero::to_string(a));
@@ -305,11 +298,6 @@ Campaign parse_campaign(std::string_view text, const std::string& source,
         ctl.finish();
     }
     if (root.has("dynamic")) {
-        if (c.source.type == SourceType::euler)
-            root.fail("dynamic",
-                      "needs rotation rates, which the euler source does not model (no "
-                      "moving meshes yet)",
-                      fmt::format(fmt::runtime(euler_static_only), "dynamic"));
         ConfigMap d = root.map("dynamic");
         DynamicPlan p;
         p.alpha = read_axis(d, "alpha", true, -core::pi / 2, core::pi / 2, "rad")

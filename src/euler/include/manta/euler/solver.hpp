@@ -22,6 +22,7 @@
 #include "manta/core/frames.hpp"
 #include "manta/euler/block_matrix.hpp"
 #include "manta/euler/gas.hpp"
+#include "manta/euler/rotating_frame.hpp"
 #include "manta/euler/spatial.hpp"
 #include "manta/parallel/communicator.hpp"
 
@@ -304,10 +305,19 @@ public:
     /// false to stop.
     using Monitor = std::function<bool(const IterationRecord&)>;
 
-    /// Iterate to convergence (or the iteration limit): `PseudoTimeStep` with no extra terms and
-    /// the rule `steady_stop`. ConvergenceError if the iteration diverges after `max_backoffs`
-    /// CFL back-offs.
+    /// Iterate to convergence (or the iteration limit): `PseudoTimeStep` with the rule
+    /// `steady_stop` and no extra terms, or, in a rotating frame, the frame's source (evaluated
+    /// at the current state every step). ConvergenceError if the iteration diverges after
+    /// `max_backoffs` CFL back-offs.
     SolveOutcome solve(const Monitor& monitor = {});
+
+    /// Solve in a frame rotating with the mesh (rotating_frame.hpp, docs/euler.md#rotation-rates):
+    /// the grid fluxes of the rotation on every dual face (and the node grid velocities for the
+    /// strong tangency targets) given to the operator, and the frame's source added to the
+    /// residual explicitly (not in the implicit matrix). A frame with omega = 0 restores the
+    /// fixed mesh, bit for bit.
+    void set_rotating_frame(const RotatingFrame& frame);
+    [[nodiscard]] const RotatingFrame& rotating_frame() const noexcept { return frame_; }
 
     /// Conservative state of every local node (owned, then ghosts).
     [[nodiscard]] const NodeStates& state() const noexcept { return U_; }
@@ -362,6 +372,10 @@ private:
     PseudoTimeStep step_;
     NodeStates U_;
     IterationState it_;
+    RotatingFrame frame_;
+    mesh::DualFaceValues frame_g_;  ///< the rotation's grid fluxes
+    Eigen::Matrix3Xd frame_v_;      ///< the rotation's node velocities
+    NodeStates frame_S_;            ///< the rotation's source (StepTerms::source)
 };
 
 /// InputError unless U has `n_local` columns and positive, finite density and pressure at every

@@ -7,9 +7,12 @@
 ///
 /// The mesh axes are taken as x downstream (aft), y toward the right wing, z up; body-axis
 /// coefficients are x forward, y right, z down (aero/types.hpp), so CX = -CFx, CZ = -CFz,
-/// Cl = -CMx, Cm = CMy, Cn = -CMz. Rotation rates and control deflections need moving and
-/// deforming meshes (issue part 2): a query with any of them is an InputError.
+/// Cl = -CMx, Cm = CMy, Cn = -CMz. Control deflections deform the mesh by the configuration's
+/// control surfaces (meshmotion::MeshMotion::deformed); rotation rates p_hat, q_hat, r_hat solve
+/// in the frame turning with the body (rotating_frame.hpp); docs/euler.md, "Control deflections"
+/// and "Rotation rates".
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -20,6 +23,7 @@
 #include "manta/euler/solver.hpp"
 #include "manta/mesh/dual.hpp"
 #include "manta/mesh/mesh.hpp"
+#include "manta/meshmotion/mesh_motion.hpp"
 
 namespace manta::euler {
 
@@ -35,7 +39,13 @@ public:
     /// `setup`: roles (one per marker of `mesh`), reference values, numerics and solver
     /// settings; its flow condition is replaced by each query's. `label` names the mesh in the
     /// fingerprint and messages. InputError if the setup does not fit the mesh.
-    EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label);
+    /// `control_surfaces`: the configuration's `control_surfaces:` (their modes elevator,
+    /// aileron and rudder are the query's deflections); `config_label` names the configuration
+    /// in messages. InputError from meshmotion::MeshMotion for a surface that does not fit the
+    /// mesh.
+    EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label,
+                std::vector<meshmotion::ControlSurfaceSpec> control_surfaces = {},
+                std::string config_label = "the CFD configuration");
     /// The source of a mesh file and a `manta cfd` configuration file (empty: the defaults),
     /// set up as `manta cfd` sets up a case (case.hpp: `read_case_mesh`, `case_setup`,
     /// `resolve_roles`, and the mesh's companion file where the configuration is silent:
@@ -46,9 +56,17 @@ public:
 
     [[nodiscard]] std::string name() const override { return "euler"; }
     [[nodiscard]] std::string fingerprint() const override { return fingerprint_; }
-    /// Converged steady coefficients at q (serial solve). Thread-safe: several evaluations may
-    /// run at once, each with its own solver. ConvergenceError if the solve diverges or stops
-    /// at its iteration limit short of the residual drop.
+    /// Converged steady coefficients at q (serial solve). Deflections q.elevator, q.aileron,
+    /// q.rudder [rad] deform a copy of the mesh (each control surface by gain times its mode's
+    /// deflection); rates p_hat = p b / (2 V), q_hat = q c / (2 V), r_hat = r b / (2 V) (body
+    /// axes; b, c: the reference span and chord; about the moment point) solve in the rotating
+    /// frame, quasi-steadily. Thread-safe: several evaluations may run at once, each with its own
+    /// solver and, when deflected, its own coordinates and metrics; the warm start takes the
+    /// nearest converged solution in (alpha, beta, Mach, rates, deflections). InputError for
+    /// alpha_dot_hat or beta_dot_hat (they need a time-accurate solution), for a deflection of a
+    /// mode no control surface has, and for a deflection that inverts a dual cell.
+    /// ConvergenceError if the solve diverges or stops at its iteration limit short of the
+    /// residual drop.
     [[nodiscard]] aero::SourceResult evaluate(
         const aero::AeroQuery<double>& q, const aero::FlowConditions& conditions) const override;
 
@@ -59,6 +77,8 @@ public:
 private:
     struct Cached {
         double mach, alpha, beta;
+        std::array<double, 3> rates;       ///< p_hat, q_hat, r_hat
+        std::array<double, 3> deflection;  ///< elevator, aileron, rudder [rad]
         double peak_log10_residual;  ///< of the run that computed it (the warm start's reference)
         NodeStates U;
     };
@@ -67,6 +87,9 @@ private:
     parallel::SerialHalo halo_;
     parallel::SerialCommunicator comm_;
     CaseSetup setup_;
+    std::vector<meshmotion::ControlSurfaceSpec> surfaces_;
+    std::unique_ptr<meshmotion::MeshMotion> motion_;  ///< null without control surfaces
+    std::string config_label_;
     std::string fingerprint_;
     std::size_t cache_size_ = 16;
     mutable std::mutex mutex_;
