@@ -46,7 +46,8 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label,
       dual_(mesh::compute_dual_metrics(mesh_)),
       setup_(std::move(setup)),
       surfaces_(std::move(control_surfaces)),
-      config_label_(std::move(config_label)) {
+      config_label_(std::move(config_label)),
+      label_(label) {
     if (static_cast<int>(setup_.roles.size()) != mesh_.n_markers())
         throw InputError(fmt::format("{}: {} boundary roles for {} markers", label,
                                      setup_.roles.size(), mesh_.n_markers()));
@@ -119,6 +120,14 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
             "the rotation rates p_hat, q_hat, r_hat only; expected 0 (the alpha_dot and beta_dot "
             "derivatives need a time-accurate solution)",
             q.alpha_dot_hat, q.beta_dot_hat));
+    if (q.p_hat != 0.0 || q.r_hat != 0.0)
+        for (std::size_t m = 0; m < setup_.roles.size(); ++m)
+            if (setup_.roles[m] == BoundaryKind::symmetry)
+                throw InputError(fmt::format(
+                    "euler source: p_hat {:g}, r_hat {:g} on the mesh {}, whose marker '{}' is a "
+                    "symmetry plane (it mirrors the flow, so the antisymmetric roll and yaw "
+                    "rates have no solution on it); expected a mesh of the whole aircraft",
+                    q.p_hat, q.r_hat, label_, mesh_.markers()[m]));
     const std::array<double, 3> rates{q.p_hat, q.q_hat, q.r_hat};
     const std::array<double, 3> deflection{q.elevator, q.aileron, q.rudder};
     static constexpr std::array<const char*, 3> mode_names{"elevator", "aileron", "rudder"};

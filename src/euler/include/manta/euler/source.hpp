@@ -63,7 +63,8 @@ public:
     /// frame, quasi-steadily. Thread-safe: several evaluations may run at once, each with its own
     /// solver and, when deflected, its own coordinates and metrics; the warm start takes the
     /// nearest converged solution in (alpha, beta, Mach, rates, deflections). InputError for
-    /// alpha_dot_hat or beta_dot_hat (they need a time-accurate solution), for a deflection of a
+    /// alpha_dot_hat or beta_dot_hat (they need a time-accurate solution), for p_hat or r_hat on a
+    /// mesh with a symmetry plane (a half model mirrors the flow), for a deflection of a
     /// mode no control surface has, and for a deflection that inverts a dual cell.
     /// ConvergenceError if the solve diverges or stops at its iteration limit short of the
     /// residual drop.
@@ -90,6 +91,7 @@ private:
     std::vector<meshmotion::ControlSurfaceSpec> surfaces_;
     std::unique_ptr<meshmotion::MeshMotion> motion_;  ///< null without control surfaces
     std::string config_label_;
+    std::string label_;  ///< the mesh, for messages
     std::string fingerprint_;
     std::size_t cache_size_ = 16;
     mutable std::mutex mutex_;
