@@ -178,14 +178,30 @@ nlohmann::json report_json(const tables::ScenarioReport& r) {
 /// The Euler source of a campaign: the mesh and the `manta cfd` configuration, set up as
 /// `manta cfd` sets up a case (`euler::EulerSource::from_files`); the flow condition comes from
 /// each sample.
-std::unique_ptr<aero::AeroSource> make_euler_source(const tables::SourceSpec& spec,
+std::unique_ptr<aero::AeroSource> make_euler_source(const tables::Campaign& campaign,
                                                     const std::filesystem::path& out) {
+    const tables::SourceSpec& spec = campaign.source;
     if (!std::filesystem::exists(spec.mesh))
         throw ConfigError(
             fmt::format("{}: mesh file '{}' does not exist; expected a mesh that "
                         "manta cfd reads (SU2, gmsh, CGNS)",
                         spec.where, spec.mesh.string()));
-    if (!spec.launched) return euler::EulerSource::from_files(spec.mesh, spec.cfd_config);
+    if (!spec.launched) {
+        auto source = euler::EulerSource::from_files(spec.mesh, spec.cfd_config);
+        for (const auto& plan : campaign.controls) {
+            const std::string name(aero::to_string(plan.control));
+            if (!source->has_control(name))
+                throw ConfigError(fmt::format(
+                    "{}: {} has no control surface of mode '{}'; expected a control_surfaces "
+                    "entry with mode: {} for each table of controls",
+                    plan.where,
+                    spec.cfd_config.empty()
+                        ? std::string("the default CFD configuration (no source.config)")
+                        : fmt::format("the CFD configuration '{}'", spec.cfd_config.string()),
+                    name, name));
+        }
+        return source;
+    }
     // Each sample a `manta cfd` job through the user's launcher, its run folder under OUT/cfd.
     euler::LaunchOptions o;
     o.launcher = core::split_command(spec.launcher, spec.where + ": launcher");
@@ -211,7 +227,7 @@ int run_tables(const TablesArgs& a) {
     if (campaign.source.type == tables::SourceType::analytic) {
         source = std::make_unique<tables::AnalyticSource>(campaign.source.analytic);
     } else if (campaign.source.type == tables::SourceType::euler) {
-        source = make_euler_source(campaign.source, out);
+        source = make_euler_source(campaign, out);
     } else {
         const auto& spec = campaign.source;
         if (!std::filesystem::exists(spec.aircraft))

@@ -107,6 +107,11 @@ std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path
                                          cfg.source);
 }
 
+bool EulerSource::has_control(const std::string& mode) const {
+    return std::any_of(surfaces_.begin(), surfaces_.end(),
+                       [&](const meshmotion::ControlSurfaceSpec& s) { return s.mode == mode; });
+}
+
 EulerSourceStats EulerSource::stats() const {
     std::lock_guard lock(mutex_);
     return stats_;
@@ -120,14 +125,6 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
             "the rotation rates p_hat, q_hat, r_hat only; expected 0 (the alpha_dot and beta_dot "
             "derivatives need a time-accurate solution)",
             q.alpha_dot_hat, q.beta_dot_hat));
-    if (q.p_hat != 0.0 || q.r_hat != 0.0)
-        for (std::size_t m = 0; m < setup_.roles.size(); ++m)
-            if (setup_.roles[m] == BoundaryKind::symmetry)
-                throw InputError(fmt::format(
-                    "euler source: p_hat {:g}, r_hat {:g} on the mesh {}, whose marker '{}' is a "
-                    "symmetry plane (it mirrors the flow, so the antisymmetric roll and yaw "
-                    "rates have no solution on it); expected a mesh of the whole aircraft",
-                    q.p_hat, q.r_hat, label_, mesh_.markers()[m]));
     const std::array<double, 3> rates{q.p_hat, q.q_hat, q.r_hat};
     const std::array<double, 3> deflection{q.elevator, q.aileron, q.rudder};
     static constexpr std::array<const char*, 3> mode_names{"elevator", "aileron", "rudder"};
@@ -194,6 +191,26 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
         RotatingFrame frame;
         frame.omega = core::geometry_from_body(body);
         frame.center = ref.moment_point;
+        // A symmetry plane mirrors the flow: the motion is its own mirror image only when the
+        // rotation is about the plane's normal (pitch on a half model with the plane y = 0).
+        const Vec3 axis = frame.omega.normalized();
+        for (std::size_t mk = 0; mk < setup_.roles.size(); ++mk) {
+            if (setup_.roles[mk] != BoundaryKind::symmetry) continue;
+            const auto& normals = dual_.boundary[mk].normals;
+            for (Index k = 0; k < normals.cols(); ++k) {
+                const double a = normals.col(k).norm();
+                if (a > 0.0 && axis.cross(normals.col(k) / a).norm() > 1e-6)
+                    throw InputError(fmt::format(
+                        "euler source: p_hat {:g}, q_hat {:g}, r_hat {:g} turn the mesh {} "
+                        "through its symmetry plane '{}' (normal ({:.3g}, {:.3g}, {:.3g}) at node "
+                        "{}), which mirrors the flow; expected a rotation about the plane's "
+                        "normal only (q_hat on a half model with the plane y = 0) or a mesh of "
+                        "the whole aircraft",
+                        q.p_hat, q.q_hat, q.r_hat, label_, mesh_.markers()[mk], normals(0, k) / a,
+                        normals(1, k) / a, normals(2, k) / a,
+                        dual_.boundary[mk].nodes[static_cast<std::size_t>(k)]));
+            }
+        }
         solver.set_rotating_frame(frame);
     }
 

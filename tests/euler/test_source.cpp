@@ -1,7 +1,9 @@
 /// @file test_source.cpp
 /// The Euler solver behind aero::AeroSource (source.hpp): a warm-started evaluation gives the
 /// cold-started result in fewer iterations, body and wind axes are consistent, and queries the
-/// steady solver cannot answer (rates, control deflections) are input errors.
+/// channel cannot answer are input errors: a pitch rate about y turns the slab through its
+/// symmetry planes z = 0 and z = 0.1, and the channel has no control surfaces
+/// (test_source_campaign.cpp and test_wing_rates_slow.cpp solve rates and deflections).
 
 #include <gtest/gtest.h>
 

@@ -20,11 +20,12 @@
 /// - Cl_p (the whole wing: the half model mirrored about y = 0, 17 058 nodes; a symmetry plane
 ///   cannot carry the antisymmetric load) from one solution at p_hat = p b / (2 V) = 0.05 at
 ///   alpha 0: the mesh is mirror-symmetric, so Cl(-p_hat) = -Cl(p_hat) and Cl(0) = 0 exactly,
-///   and Cl / p_hat is the central difference. Strip theory (each section at its local incidence
-///   p y / V, Etkin & Reid, Dynamics of Flight: Stability and Control, 3rd ed., 1996, ch. 5; the
-///   rectangular wing's integral) gives Cl_p = -a / 6 with a the strips' lift slope: 2 pi / beta
-///   for the sections alone (no induced angle: an upper bound of the damping), CL_alpha of the
-///   wing for the lifting-line estimate.
+///   and Cl / p_hat is the central difference. References: strip theory (each section at its
+///   local incidence p y / V, no induced angle; the rectangular wing's integral, e.g. Etkin &
+///   Reid, Dynamics of Flight: Stability and Control, 3rd ed., 1996, ch. 5) Cl_p = -a0 / 6 with
+///   a0 = 2 pi / beta, an upper bound of the damping; and Prandtl's lifting line for the
+///   antisymmetric load (Glauert's Fourier method, H. Glauert, The Elements of Aerofoil and
+///   Airscrew Theory, 2nd ed., 1947, ch. XI; `lifting_line_roll_damping` below).
 /// The measured numbers are in docs/validation.md ("Rotary derivatives of the AR-6 wing").
 
 #include <gtest/gtest.h>
@@ -174,9 +175,12 @@ TEST(WingRates, RollDampingAgreesWithTheVortexLatticeAndStripTheory) {
         static_cast<int>(m.n_nodes()), mach, q.p_hat, seconds_since(t0), src.stats().iterations,
         Clp, r.wind.CL, r.body.Cm, d(3, 2), strip, lifting_line, lifting_line_thick);
     RecordProperty("Clp_euler", std::to_string(Clp));
-    EXPECT_NEAR(Clp, d(3, 2), 0.10 * std::abs(d(3, 2)));
-    // Between the lifting-line estimate and the strips without induced angle.
-    EXPECT_LT(Clp, 0.9 * lifting_line);
+    // Measured (docs/validation.md): Euler -0.5335, lifting line -0.5367 (2 pi sections) and
+    // -0.5620 (with the thickness factor), vortex lattice -0.4620: the lattice is 14 % below
+    // the lifting line on this wing, the Euler solution within 1 % of it.
+    EXPECT_NEAR(Clp, lifting_line, 0.08 * std::abs(lifting_line));
+    EXPECT_NEAR(Clp, d(3, 2), 0.20 * std::abs(d(3, 2)));
+    // Less damping than the strips without the induced angle.
     EXPECT_GT(Clp, strip);
     // A symmetric wing rolling at zero incidence: no lift, no pitching moment.
     EXPECT_NEAR(r.wind.CL, 0.0, 2e-3);

@@ -63,14 +63,17 @@ public:
     /// frame, quasi-steadily. Thread-safe: several evaluations may run at once, each with its own
     /// solver and, when deflected, its own coordinates and metrics; the warm start takes the
     /// nearest converged solution in (alpha, beta, Mach, rates, deflections). InputError for
-    /// alpha_dot_hat or beta_dot_hat (they need a time-accurate solution), for p_hat or r_hat on a
-    /// mesh with a symmetry plane (a half model mirrors the flow), for a deflection of a
+    /// alpha_dot_hat or beta_dot_hat (they need a time-accurate solution), for a rotation not
+    /// about the normal of every symmetry plane (a half model with the plane y = 0 takes q_hat
+    /// only: the plane mirrors the flow), for a deflection of a
     /// mode no control surface has, and for a deflection that inverts a dual cell.
     /// ConvergenceError if the solve diverges or stops at its iteration limit short of the
     /// residual drop.
     [[nodiscard]] aero::SourceResult evaluate(
         const aero::AeroQuery<double>& q, const aero::FlowConditions& conditions) const override;
 
+    /// Whether a control surface of the configuration is driven by `mode` ("elevator").
+    [[nodiscard]] bool has_control(const std::string& mode) const;
     [[nodiscard]] EulerSourceStats stats() const;
     /// Converged solutions kept for warm starts (default 16; the oldest is dropped).
     void set_cache_size(std::size_t n) { cache_size_ = n; }
