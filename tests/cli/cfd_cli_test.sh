@@ -88,7 +88,7 @@ check "broken mesh" 2 "$manta" cfd --mesh "$work/broken.su2" --mach 0.5 --out "$
 one_line "broken mesh one line" "$work/err.txt"
 contains "broken mesh names the file" "$work/err.txt" "broken.su2"
 
-# A table campaign on the Euler source (static coefficients; docs/tables.md): four samples at
+# A table campaign on the Euler source (static table; docs/tables.md): four samples at
 # two Mach numbers, each after the first warm-started; a rerun reuses every sample.
 cat > "$work/campaign.yaml" <<EOF
 schema_version: 1
@@ -117,8 +117,11 @@ then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: euler table sample
 check "euler tables rerun" 0 "$manta" tables --campaign "$work/campaign.yaml" --out "$work/tab" --json
 contains "euler tables rerun reuses" "$work/out.txt" '"evaluated": 0'
 printf 'controls:\n  elevator: {deflection_deg: [-5, 0, 5]}\n' >> "$work/campaign.yaml"
+# Control tables deflect the CFD configuration's control surfaces: none here, refused before any
+# sample (docs/tables.md).
 check "euler tables with controls" 2 "$manta" tables --campaign "$work/campaign.yaml" --out "$work/tab2"
-contains "euler controls message" "$work/err.txt" "campaign.yaml:10: key 'controls'.*static coefficients only"
+contains "euler controls message" "$work/err.txt" "campaign.yaml:11: .*no control surface of mode 'elevator'"
+one_line "euler controls message one line" "$work/err.txt"
 
 # One and two processes converge to the same coefficients: np_pair LABEL CONFIG [SU2_CL] runs the
 # case serially and with `mpirun -n 2`, compares CL, CD, CMy (2e-5) and, if given, CL with SU2's
