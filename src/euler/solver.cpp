@@ -215,7 +215,10 @@ SolveOutcome SteadySolver::solve(const Monitor& monitor) {
     step_.begin(it_);
     const bool rotating = frame_.active();
     StepTerms terms;
-    if (rotating) terms.source = &frame_S_;
+    if (rotating) {
+        terms.source = &frame_S_;
+        step_.set_grid_fluxes(&frame_g_, &frame_v_);  // this object's arrays (it may have moved)
+    }
     const Vec3 u_inf = step_.free_stream_primitive().segment<3>(1);
     const Domain& d = step_.domain();
     while (true) {

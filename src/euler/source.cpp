@@ -102,9 +102,9 @@ std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path
     CaseMesh m = read_case_mesh(mesh);
     CaseSetup setup = case_setup(cfg);
     setup.roles = resolve_roles(m.mesh, cfg);
-    return std::make_unique<EulerSource>(std::move(m.mesh), std::move(setup),
-                                         mesh.filename().string(), cfg.control_surfaces,
-                                         cfg.source);
+    return std::make_unique<EulerSource>(
+        std::move(m.mesh), std::move(setup), mesh.filename().string(), cfg.control_surfaces,
+        config.empty() ? std::string("the default CFD configuration") : config.string());
 }
 
 bool EulerSource::has_control(const std::string& mode) const {
