@@ -65,8 +65,8 @@ public:
     /// nearest converged solution in (alpha, beta, Mach, rates, deflections). InputError for
     /// alpha_dot_hat or beta_dot_hat (they need a time-accurate solution), for a rotation not
     /// about the normal of every symmetry plane (a half model with the plane y = 0 takes q_hat
-    /// only: the plane mirrors the flow), for a deflection of a
-    /// mode no control surface has, and for a deflection that inverts a dual cell.
+    /// only: the plane mirrors the flow), for a deflection of a mode no control surface has,
+    /// and for a deflection that inverts a dual cell.
     /// ConvergenceError if the solve diverges or stops at its iteration limit short of the
     /// residual drop.
     [[nodiscard]] aero::SourceResult evaluate(
