@@ -12,6 +12,7 @@
 #include <fstream>
 #include <span>
 
+#include "detail/binary_io.hpp"
 #include "manta/aero/motion.hpp"
 #include "manta/aero/types.hpp"
 #include "manta/core/error.hpp"
@@ -57,57 +58,8 @@ std::uint64_t fnv1a(std::string_view text) {
     return h;
 }
 
-/// Little-endian binary writer and reader of the unsteady checkpoint.
-struct BinOut {
-    std::string buf;
-    template <class T>
-    void put(const T& v) {
-        buf.append(reinterpret_cast<const char*>(&v), sizeof(T));
-    }
-    void put_string(const std::string& v) {
-        put(static_cast<std::uint64_t>(v.size()));
-        buf += v;
-    }
-    void put_doubles(const double* p, std::size_t n) {
-        put(static_cast<std::uint64_t>(n));
-        buf.append(reinterpret_cast<const char*>(p), n * sizeof(double));
-    }
-};
-struct BinIn {
-    const std::string& buf;
-    std::size_t pos = 0;
-    std::string file;
-    void need(std::size_t n) const {
-        if (pos + n > buf.size())
-            throw InputError(fmt::format(
-                "{}: truncated unsteady restart file (byte {} of {}); run with --restart to start "
-                "over",
-                file, pos + n, buf.size()));
-    }
-    template <class T>
-    T get() {
-        need(sizeof(T));
-        T v;
-        std::memcpy(&v, buf.data() + pos, sizeof(T));
-        pos += sizeof(T);
-        return v;
-    }
-    std::string get_string() {
-        const auto n = get<std::uint64_t>();
-        need(n);
-        std::string v = buf.substr(pos, n);
-        pos += n;
-        return v;
-    }
-    std::vector<double> get_doubles() {
-        const auto n = get<std::uint64_t>();
-        need(n * sizeof(double));
-        std::vector<double> v(n);
-        std::memcpy(v.data(), buf.data() + pos, n * sizeof(double));
-        pos += n * sizeof(double);
-        return v;
-    }
-};
+using detail::BinIn;
+using detail::BinOut;
 constexpr char unsteady_magic[9] = "MANTAUN1";
 
 /// The .pvd collection of the VTU files written so far.
@@ -147,6 +99,111 @@ nlohmann::json to_json(const ForceCoefficients& f) {
     return {{"CL", f.CL},   {"CD", f.CD},   {"CY", f.CY},   {"CFx", f.CFx},
             {"CFy", f.CFy}, {"CFz", f.CFz}, {"CMx", f.CMx}, {"CMy", f.CMy},
             {"CMz", f.CMz}, {"Cl", f.Cl()}, {"Cm", f.Cm()}, {"Cn", f.Cn()}};
+}
+
+void orient_mesh(mesh::Mesh& m, const CfdConfig& config) {
+    if (config.mesh_up != "y") return;
+    // A 2-D mesh's slab in the x-y plane: +90 deg about x, (x, y, z) -> (x, -z, y).
+    std::vector<double> x(m.coordinates().begin(), m.coordinates().end());
+    for (std::size_t i = 0; i + 2 < x.size(); i += 3) {
+        const double y = x[i + 1], z = x[i + 2];
+        x[i + 1] = -z;
+        x[i + 2] = y;
+    }
+    m.set_coordinates(x);
+}
+
+MotionStepping motion_stepping(const aero::Motion& motion, const std::string& src, double mach,
+                               std::optional<double> given_dt, const UnsteadySettings& inner,
+                               const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
+                               const std::string& dt_what) {
+    if (motion.metadata.mach && std::abs(*motion.metadata.mach - mach) > 1e-6)
+        throw InputError(
+            fmt::format("{}: '# mach: {}' differs from the flow's Mach number {}; give one of them",
+                        src, *motion.metadata.mach, mach));
+    if (!motion.metadata.v0)
+        throw InputError(fmt::format(
+            "{}: no '# v0:' line; the unsteady CFD needs the entry speed [m/s] to relate the "
+            "motion's seconds to the flow",
+            src));
+    MotionStepping st;
+    st.v0 = *motion.metadata.v0;
+    const double duration = motion.t.back() - motion.t.front();
+    double dt = 0.0;
+    if (given_dt) {
+        dt = *given_dt;
+    } else {
+        dt = motion.t[1] - motion.t[0];
+        for (std::size_t i = 1; i < motion.t.size(); ++i)
+            if (std::abs(motion.t[i] - motion.t[i - 1] - dt) > 1e-9 * duration)
+                throw InputError(fmt::format(
+                    "{}: the samples are not evenly spaced (row {}: spacing {} s, first {} s); "
+                    "give --dt",
+                    src, i + 1, motion.t[i] - motion.t[i - 1], dt));
+    }
+    const double n = std::round(duration / dt);
+    if (!(dt > 0) || n < 1 || std::abs(n * dt - duration) > 1e-9 * duration)
+        throw InputError(fmt::format(
+            "{} {} s does not divide the duration {} s of the motion {}; expected a time step "
+            "of duration / N (such as {:.6g} s)",
+            dt_what, dt, duration, src, duration / std::max(1.0, std::isfinite(n) ? n : 1.0)));
+    st.n_steps = static_cast<int>(n);
+    st.dt = duration / n;  // exactly N steps
+    const double c_inf = st.v0 / mach;
+    st.time_unit = 1.0 / c_inf;  // mesh length unit 1 m
+    st.time = inner;
+    st.time.dt = st.dt / st.time_unit;
+    st.time.validate();
+    std::string cs;
+    for (const auto& c : surfaces)
+        cs += fmt::format("{}:{}:{},{},{}:{},{},{}:{};", c.mode, c.marker, c.hinge[0].x(),
+                          c.hinge[0].y(), c.hinge[0].z(), c.hinge[1].x(), c.hinge[1].y(),
+                          c.hinge[1].z(), c.gain);
+    st.fingerprint = fmt::format("motion={:016x} dt={} steps={} surfaces={:016x}",
+                                 fnv1a(aero::motion_to_text(motion)), core::format_exact(st.dt),
+                                 st.n_steps, fnv1a(cs));
+    return st;
+}
+
+std::unique_ptr<meshmotion::MeshMotion> place_mesh_motion(
+    const mesh::Mesh& mesh, const aero::Motion& motion, const ReferenceValues& reference,
+    const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces) {
+    meshmotion::MotionPlacement placement;
+    placement.reference_point = reference.moment_point;
+    placement.motion_source = source;
+    auto m = std::make_unique<meshmotion::MeshMotion>(mesh, motion, placement, surfaces);
+    m->check_motion();
+    return m;
+}
+
+aero::UnsteadySample motion_sample(const aero::Motion& motion, double t, double v0,
+                                   const ForceCoefficients& f, const ReferenceValues& reference) {
+    const aero::MotionState ms = motion.at(t);
+    const meshmotion::RigidPose pose = meshmotion::rigid_pose(ms, reference.moment_point);
+    // Flow-frame (mesh-like axes) force and moment (moment lengths per axis) about the moving
+    // reference point, then body axes: v_body = C D v_flow.
+    const Eigen::Vector3d F(f.CFx, f.CFy, f.CFz);
+    const double span = reference.span, chord = reference.chord;
+    Eigen::Vector3d M(f.CMx * span, f.CMy * chord, f.CMz * span);
+    M -= (pose.reference - reference.moment_point).cross(F);
+    const Eigen::Matrix3d C = core::dcm_body_from_earth(ms.euler);  // motion frame -> body
+    const Eigen::Matrix3d D = core::dcm_body_from_geometry();
+    const Eigen::Vector3d Fb = C * D * F, Mb = C * D * M;
+    const Eigen::Vector3d vb =
+        C * Eigen::Vector3d(v0 + ms.velocity[0], ms.velocity[1], ms.velocity[2]);
+    aero::UnsteadySample s;
+    s.t = t;
+    s.airspeed = vb.norm();
+    s.alpha = std::atan2(vb.z(), vb.x());
+    s.beta = std::asin(vb.y() / s.airspeed);
+    s.wind = aero::wind_from_body(Fb.x(), Fb.y(), Fb.z(), s.alpha, s.beta);
+    s.body.CX = Fb.x();
+    s.body.CY = Fb.y();
+    s.body.CZ = Fb.z();
+    s.body.Cl = Mb.x() / span;
+    s.body.Cm = Mb.y() / chord;
+    s.body.Cn = Mb.z() / span;
+    return s;
 }
 
 struct CfdCase::Impl {
@@ -253,83 +310,32 @@ void CfdCase::Impl::coordinates(long step, Eigen::Matrix3Xd& x) {
 
 void CfdCase::Impl::prepare_motion() {
     const std::string src = in.motion.string();
-    if (motion.metadata.mach && std::abs(*motion.metadata.mach - setup.flow.mach) > 1e-6)
-        throw InputError(
-            fmt::format("{}: '# mach: {}' differs from the flow's Mach number {}; give one of them",
-                        src, *motion.metadata.mach, setup.flow.mach));
-    if (!motion.metadata.v0)
-        throw InputError(fmt::format(
-            "{}: no '# v0:' line; the unsteady CFD needs the entry speed [m/s] to relate the "
-            "motion's seconds to the flow",
-            src));
-    v0 = *motion.metadata.v0;
+    const MotionStepping st =
+        motion_stepping(motion, src, setup.flow.mach, in.dt, cfg.unsteady, cfg.control_surfaces);
     if (cfg.alpha.value_or(0.0) != 0.0 || cfg.beta.value_or(0.0) != 0.0 || in.alpha || in.beta)
         throw InputError(fmt::format(
             "{}: flow.alpha and flow.beta must be 0 (or absent) with --motion; the attitude "
             "comes from the motion {}",
             cfg.source, src));
-    const double duration = motion.t.back() - motion.t.front();
-    if (in.dt) {
-        dt = *in.dt;
-    } else {
-        dt = motion.t[1] - motion.t[0];
-        for (std::size_t i = 1; i < motion.t.size(); ++i)
-            if (std::abs(motion.t[i] - motion.t[i - 1] - dt) > 1e-9 * duration)
-                throw InputError(fmt::format(
-                    "{}: the samples are not evenly spaced (row {}: spacing {} s, first {} s); "
-                    "give --dt",
-                    src, i + 1, motion.t[i] - motion.t[i - 1], dt));
-    }
-    const double n = std::round(duration / dt);
-    if (!(dt > 0) || n < 1 || std::abs(n * dt - duration) > 1e-9 * duration)
-        throw InputError(fmt::format(
-            "manta cfd: --dt {} s does not divide the duration {} s of the motion {}; expected "
-            "a time step of duration / N",
-            dt, duration, src));
-    n_steps = static_cast<int>(n);
-    dt = duration / n;  // exactly N steps
-    const double c_inf = v0 / setup.flow.mach;
-    time_unit = 1.0 / c_inf;  // mesh length unit 1 m
-    cfg.unsteady.dt = dt / time_unit;
-    cfg.unsteady.validate();
-    std::string cs;
-    for (const auto& c : cfg.control_surfaces)
-        cs += fmt::format("{}:{}:{},{},{}:{},{},{}:{};", c.mode, c.marker, c.hinge[0].x(),
-                          c.hinge[0].y(), c.hinge[0].z(), c.hinge[1].x(), c.hinge[1].y(),
-                          c.hinge[1].z(), c.gain);
-    motion_fingerprint = fmt::format("motion={:016x} dt={} steps={} surfaces={:016x}",
-                                     fnv1a(aero::motion_to_text(motion)), core::format_exact(dt),
-                                     n_steps, fnv1a(cs));
+    v0 = st.v0;
+    dt = st.dt;
+    n_steps = st.n_steps;
+    time_unit = st.time_unit;
+    cfg.unsteady = st.time;
+    motion_fingerprint = st.fingerprint;
 }
 
 std::string CfdCase::Impl::coefficient_row(int step, const TimeStepRecord* rec) const {
-    const double t = step_time(step);
-    const aero::MotionState ms = motion.at(t);
-    const meshmotion::RigidPose pose = meshmotion::rigid_pose(ms, setup.reference.moment_point);
     const ForceCoefficients f = rec ? rec->forces : usolver->forces();
-    // Flow-frame (mesh-like axes) force and moment (moment lengths per axis) about the moving
-    // reference point, then body axes: v_body = C D v_flow.
-    const Eigen::Vector3d F(f.CFx, f.CFy, f.CFz);
-    const double span = setup.reference.span, chord = setup.reference.chord;
-    Eigen::Vector3d M(f.CMx * span, f.CMy * chord, f.CMz * span);
-    M -= (pose.reference - setup.reference.moment_point).cross(F);
-    const Eigen::Matrix3d C = core::dcm_body_from_earth(ms.euler);  // motion frame -> body
-    const Eigen::Matrix3d D = core::dcm_body_from_geometry();
-    const Eigen::Vector3d Fb = C * D * F, Mb = C * D * M;
-    const Eigen::Vector3d vb =
-        C * Eigen::Vector3d(v0 + ms.velocity[0], ms.velocity[1], ms.velocity[2]);
-    const double airspeed = vb.norm();
-    const double alpha = std::atan2(vb.z(), vb.x());
-    const double beta = std::asin(vb.y() / airspeed);
-    const aero::WindForceCoefficients<double> w =
-        aero::wind_from_body(Fb.x(), Fb.y(), Fb.z(), alpha, beta);
+    const aero::UnsteadySample s = motion_sample(motion, step_time(step), v0, f, setup.reference);
     using core::format_exact;
-    return fmt::format(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}", format_exact(t), format_exact(w.CL),
-        format_exact(w.CD), format_exact(w.CY), format_exact(Mb.x() / span),
-        format_exact(Mb.y() / chord), format_exact(Mb.z() / span), format_exact(Fb.x()),
-        format_exact(Fb.z()), format_exact(alpha), format_exact(beta), format_exact(airspeed),
-        rec ? rec->inner_iterations : 0, rec ? format_exact(rec->residual_drop) : std::string("0"));
+    return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}", format_exact(s.t),
+                       format_exact(s.wind.CL), format_exact(s.wind.CD), format_exact(s.wind.CY),
+                       format_exact(s.body.Cl), format_exact(s.body.Cm), format_exact(s.body.Cn),
+                       format_exact(s.body.CX), format_exact(s.body.CZ), format_exact(s.alpha),
+                       format_exact(s.beta), format_exact(s.airspeed),
+                       rec ? rec->inner_iterations : 0,
+                       rec ? format_exact(rec->residual_drop) : std::string("0"));
 }
 
 void CfdCase::Impl::write_unsteady_restart() {
@@ -488,16 +494,7 @@ void CfdCase::Impl::prepare() {
     if (root) {
         try {
             CaseMesh r = read_case_mesh(in.mesh);
-            if (cfg.mesh_up == "y") {
-                // A 2-D mesh's slab in the x-y plane: +90 deg about x, (x, y, z) -> (x, -z, y).
-                std::vector<double> x(r.mesh.coordinates().begin(), r.mesh.coordinates().end());
-                for (std::size_t i = 0; i + 2 < x.size(); i += 3) {
-                    const double y = x[i + 1], z = x[i + 2];
-                    x[i + 1] = -z;
-                    x[i + 2] = y;
-                }
-                r.mesh.set_coordinates(x);
-            }
+            orient_mesh(r.mesh, cfg);
             global.emplace(std::move(r.mesh));
             file_node = std::move(r.file_node);
         } catch (...) {
@@ -516,18 +513,14 @@ void CfdCase::Impl::prepare() {
     const Domain domain{&local.mesh, &dual, local.n_owned, local.halo.get()};
     fingerprint = mesh_fingerprint(local.mesh, local.global_node, local.n_owned, comm);
     if (unsteady) {
-        meshmotion::MotionPlacement placement;
-        placement.reference_point = setup.reference.moment_point;
-        placement.motion_source = in.motion.string();
         // The deformation's set-up needs the whole mesh: rank 0 moves the global mesh and every
         // process takes its nodes' coordinates (`coordinates`).
         std::exception_ptr motion_error;
         if (root) {
             try {
-                mesh_motion = std::make_unique<meshmotion::MeshMotion>(
-                    comm.size() == 1 ? local.mesh : *global, motion, placement,
-                    cfg.control_surfaces);
-                mesh_motion->check_motion();
+                mesh_motion =
+                    place_mesh_motion(comm.size() == 1 ? local.mesh : *global, motion,
+                                      setup.reference, in.motion.string(), cfg.control_surfaces);
             } catch (...) {
                 motion_error = std::current_exception();
             }

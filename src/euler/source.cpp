@@ -100,11 +100,14 @@ std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path
     CfdConfig cfg = config.empty() ? CfdConfig{} : read_cfd_config(config);
     apply_mesh_companion(cfg, mesh);
     CaseMesh m = read_case_mesh(mesh);
+    orient_mesh(m.mesh, cfg);
     CaseSetup setup = case_setup(cfg);
     setup.roles = resolve_roles(m.mesh, cfg);
-    return std::make_unique<EulerSource>(
+    auto source = std::make_unique<EulerSource>(
         std::move(m.mesh), std::move(setup), mesh.filename().string(), cfg.control_surfaces,
         config.empty() ? std::string("the default CFD configuration") : config.string());
+    source->set_unsteady_settings(cfg.mach, cfg.unsteady);
+    return source;
 }
 
 bool EulerSource::has_control(const std::string& mode) const {

@@ -25,35 +25,7 @@ namespace {
 using namespace manta;
 namespace fs = std::filesystem;
 
-/// Write `m` as an SU2 file (node orders of mesh.hpp are VTK's, as SU2's).
-void write_su2(const mesh::Mesh& m, const fs::path& file) {
-    std::ofstream o(file);
-    o.precision(17);
-    o << "NDIME= 3\nNELEM= " << m.n_cells() << "\n";
-    for (mesh::Index c = 0; c < m.n_cells(); ++c) {
-        o << static_cast<int>(m.cell_type(c));
-        for (const mesh::Index n : m.cell(c)) o << ' ' << n;
-        o << ' ' << c << "\n";
-    }
-    o << "NPOIN= " << m.n_nodes() << "\n";
-    for (mesh::Index i = 0; i < m.n_nodes(); ++i) {
-        const Eigen::Vector3d x = m.node(i);
-        o << x.x() << ' ' << x.y() << ' ' << x.z() << ' ' << i << "\n";
-    }
-    o << "NMARK= " << m.n_markers() << "\n";
-    for (int k = 0; k < m.n_markers(); ++k) {
-        int count = 0;
-        for (mesh::Index f = 0; f < m.n_faces(); ++f) count += m.face_marker(f) == k ? 1 : 0;
-        o << "MARKER_TAG= " << m.markers()[static_cast<std::size_t>(k)]
-          << "\nMARKER_ELEMS= " << count << "\n";
-        for (mesh::Index f = 0; f < m.n_faces(); ++f) {
-            if (m.face_marker(f) != k) continue;
-            o << static_cast<int>(m.face_type(f));
-            for (const mesh::Index n : m.face(f)) o << ' ' << n;
-            o << "\n";
-        }
-    }
-}
+using test::write_su2;
 
 /// A folder with the channel's mesh and configuration (walls lower and upper, area 0.1,
 /// checkpoints only at the end).

@@ -12,6 +12,7 @@
 /// them): NACA 0012 level 0 0.2 s, level 1 0.9 s; bump channel < 0.02 s; wing 1.5 s.
 
 #include <cstdint>
+#include <filesystem>
 
 #include "manta/mesh/mesh.hpp"
 
@@ -82,5 +83,9 @@ namespace manta::test {
 /// `finalize` reports them). InputError if n < 2 or the perturbation is not in [0, 0.15].
 [[nodiscard]] mesh::Mesh irregular_box(int n = 6, double perturbation = 0.15,
                                        std::uint32_t seed = 1);
+
+/// Write `m` as an SU2 file (node orders of mesh.hpp are VTK's, as SU2's; coordinates with 17
+/// digits, so the file reads back bit for bit), for the tests that run the case driver on files.
+void write_su2(const mesh::Mesh& m, const std::filesystem::path& file);
 
 }  // namespace manta::test

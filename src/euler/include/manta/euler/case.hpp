@@ -24,9 +24,13 @@
 #include <string>
 #include <vector>
 
+#include "manta/aero/motion.hpp"
+#include "manta/aero/source.hpp"
 #include "manta/euler/config.hpp"
 #include "manta/euler/solver.hpp"
+#include "manta/euler/unsteady.hpp"
 #include "manta/mesh/mesh.hpp"
+#include "manta/meshmotion/mesh_motion.hpp"
 #include "manta/parallel/communicator.hpp"
 
 namespace manta::euler {
@@ -88,6 +92,48 @@ struct CaseMesh {
 /// Read a mesh file (any format of docs/mesh.md) and renumber its nodes. InputError or IoError
 /// naming the file.
 [[nodiscard]] CaseMesh read_case_mesh(const std::filesystem::path& file);
+
+/// Turn a mesh as the configuration's `mesh.up` says: "y" (a 2-D mesh's slab in the x-y plane)
+/// turns it by +90 deg about x, (x, y, z) -> (x, -z, y); "z" leaves it.
+void orient_mesh(mesh::Mesh& mesh, const CfdConfig& config);
+
+/// The physical time stepping of a run along a motion (`manta cfd --motion`,
+/// `EulerSource::start_unsteady`).
+struct MotionStepping {
+    double v0 = 0;            ///< the motion's entry speed [m/s] (`# v0:`)
+    double dt = 0;            ///< physical time step [s], exactly duration / n_steps
+    int n_steps = 0;          ///< steps from the motion's start to its end
+    double time_unit = 1;     ///< seconds per solver time unit (1 m / c_inf)
+    UnsteadySettings time;    ///< the inner settings with `dt` in solver units, validated
+    std::string fingerprint;  ///< of the motion, dt, n_steps and the control surfaces
+};
+/// The time stepping along `motion` (named `source` in messages) at the flow's Mach number `mach`
+/// with the inner settings `inner` (its dt is replaced) and the control surfaces `surfaces`.
+/// `dt`: the physical time step [s] (none: the motion's sample spacing, which must then be
+/// even); `dt_what` names it in messages ("manta cfd: --dt"). InputError (one line) when the
+/// motion's `# mach:` differs from `mach`, when it has no `# v0:`, when the samples are uneven
+/// without `dt`, and when the time step does not divide the motion's duration.
+[[nodiscard]] MotionStepping motion_stepping(
+    const aero::Motion& motion, const std::string& source, double mach, std::optional<double> dt,
+    const UnsteadySettings& inner, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
+    const std::string& dt_what = "manta cfd: --dt");
+
+/// The mesh's motion along `motion` about the reference values' moment point, with the control
+/// surfaces `surfaces`, every sample of the motion checked (meshmotion::MeshMotion::check_motion).
+/// InputError (one line) as MeshMotion's constructor and check.
+[[nodiscard]] std::unique_ptr<meshmotion::MeshMotion> place_mesh_motion(
+    const mesh::Mesh& mesh, const aero::Motion& motion, const ReferenceValues& reference,
+    const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces);
+
+/// One instant of a run along a motion: the wall forces `f` (the solver's coefficients, on the
+/// free stream's dynamic pressure, mesh-like axes of the flow frame, moments about the fixed
+/// point `reference.moment_point`) as body-axis CX CY CZ and Cl Cm Cn about the moving reference
+/// point and wind-axis CL CD CY, and alpha, beta and airspeed of the reference point's
+/// air-relative velocity at time t. The coefficients stay on rho v0^2 / 2 (coefficients.csv of
+/// `manta cfd --motion`); `index` is left 0.
+[[nodiscard]] aero::UnsteadySample motion_sample(const aero::Motion& motion, double t, double v0,
+                                                 const ForceCoefficients& f,
+                                                 const ReferenceValues& reference);
 
 /// The coefficients as summary.json writes them (CL CD CY, CFx CFy CFz, CMx CMy CMz, Cl Cm Cn).
 [[nodiscard]] nlohmann::json to_json(const ForceCoefficients& f);

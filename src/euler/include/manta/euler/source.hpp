@@ -11,16 +11,22 @@
 /// control surfaces (meshmotion::MeshMotion::deformed); rotation rates p_hat, q_hat, r_hat solve
 /// in the frame turning with the body (rotating_frame.hpp); docs/euler.md, "Control deflections"
 /// and "Rotation rates".
+///
+/// Along a motion (`start_unsteady`, docs/euler.md#as-an-unsteady-source) the source runs the
+/// time-accurate solver of `manta cfd --motion` on its own copy of the mesh (unsteady_source.cpp),
+/// with the configuration's control surfaces and `unsteady:` settings.
 
 #include <array>
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "manta/aero/source.hpp"
 #include "manta/euler/solver.hpp"
+#include "manta/euler/unsteady.hpp"
 #include "manta/mesh/dual.hpp"
 #include "manta/mesh/mesh.hpp"
 #include "manta/meshmotion/mesh_motion.hpp"
@@ -32,6 +38,14 @@ struct EulerSourceStats {
     int evaluations = 0;
     int warm_starts = 0;
     int iterations = 0;  ///< summed over the evaluations
+};
+
+/// How a run along a motion starts (`EulerSource::set_unsteady_start`).
+enum class UnsteadyStart {
+    /// The steady solution at the motion's first instant (default): the mesh placed and deformed
+    /// as at t0, the free stream the reference point's air-relative velocity there.
+    steady,
+    free_stream,  ///< the uniform free stream, as `manta cfd --motion`
 };
 
 class EulerSource final : public aero::AeroSource {
@@ -74,11 +88,34 @@ public:
 
     /// Whether a control surface of the configuration is driven by `mode` ("elevator").
     [[nodiscard]] bool has_control(const std::string& mode) const;
+    /// True: `start_unsteady` runs the time-accurate solver.
+    [[nodiscard]] bool unsteady() const override { return true; }
+    /// The time-accurate run of `manta cfd --motion` along `motion` (serial), started as
+    /// `set_unsteady_start` says, with the control surfaces of the constructor. Mach number from
+    /// `set_unsteady_settings`' (the configuration's flow.mach) or the motion's `# mach:` (both
+    /// given and different: InputError), entry speed from `# v0:` (none: InputError); time step
+    /// `settings.dt` when > 0, else the motion's sample spacing, which must divide the motion
+    /// (InputError otherwise). Samples on rho airspeed^2 / 2; no profile drag
+    /// (`settings.conditions` is not read). The run keeps a reference to this source (for its
+    /// warm-start cache): the source must outlive it.
+    [[nodiscard]] std::unique_ptr<aero::UnsteadyRun> start_unsteady(
+        const aero::Motion& motion, const aero::UnsteadySettings& settings) const override;
+    /// The configuration's flow.mach (none: the motion's) and `unsteady:` settings, for
+    /// `start_unsteady` (`from_files` sets them; the defaults otherwise).
+    void set_unsteady_settings(std::optional<double> mach, const UnsteadySettings& inner) {
+        unsteady_mach_ = mach;
+        unsteady_inner_ = inner;
+    }
+    void set_unsteady_start(UnsteadyStart s) { unsteady_start_ = s; }
+    /// Nodes of the mesh.
+    [[nodiscard]] mesh::Index n_nodes() const { return mesh_.n_nodes(); }
+
     [[nodiscard]] EulerSourceStats stats() const;
     /// Converged solutions kept for warm starts (default 16; the oldest is dropped).
     void set_cache_size(std::size_t n) { cache_size_ = n; }
 
 private:
+    class Run;  // unsteady_source.cpp
     struct Cached {
         double mach, alpha, beta;
         std::array<double, 3> rates;       ///< p_hat, q_hat, r_hat
@@ -96,6 +133,9 @@ private:
     std::string config_label_;
     std::string label_;  ///< the mesh, for messages
     std::string fingerprint_;
+    std::optional<double> unsteady_mach_;
+    UnsteadySettings unsteady_inner_;
+    UnsteadyStart unsteady_start_ = UnsteadyStart::steady;
     std::size_t cache_size_ = 16;
     mutable std::mutex mutex_;
     mutable std::vector<Cached> cache_;

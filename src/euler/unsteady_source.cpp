@@ -1,0 +1,302 @@
+/// @file unsteady_source.cpp
+/// `EulerSource::start_unsteady` (source.hpp, docs/euler.md#as-an-unsteady-source): the
+/// time-accurate run of `manta cfd --motion` (case.hpp: `motion_stepping`, `place_mesh_motion`,
+/// `motion_sample`) as an aero::UnsteadyRun, serial, on the source's own copy of the mesh, started
+/// from the steady solution at the motion's first instant, saved and restored as one binary file.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "detail/binary_io.hpp"
+#include "manta/core/error.hpp"
+#include "manta/core/frames.hpp"
+#include "manta/core/io.hpp"
+#include "manta/euler/case.hpp"
+#include "manta/euler/gas.hpp"
+#include "manta/euler/source.hpp"
+#include "manta/euler/unsteady.hpp"
+
+namespace manta::euler {
+
+namespace {
+
+constexpr double rad_to_deg = 57.29577951308232;
+constexpr char run_magic[9] = "MANTAES1";
+constexpr const char* motion_label = "euler source: motion";
+
+}  // namespace
+
+class EulerSource::Run final : public aero::UnsteadyRun {
+public:
+    Run(const EulerSource& source, const aero::Motion& motion,
+        const aero::UnsteadySettings& settings)
+        : src_(source), mesh_(source.mesh_), dual_(source.dual_), motion_(motion) {
+        const struct {
+            const std::optional<double>& mach;
+            const std::string& source;
+            const UnsteadySettings& unsteady;
+            const std::vector<meshmotion::ControlSurfaceSpec>& control_surfaces;
+        } cfg{source.unsteady_mach_, source.config_label_, source.unsteady_inner_,
+              source.surfaces_};
+        // The case's order of set-up (case.cpp, CfdCase::Impl::prepare), so that a run started
+        // from the free stream gives `manta cfd --motion`'s coefficients bit for bit.
+        const std::optional<double> mach = cfg.mach ? cfg.mach : motion_.metadata.mach;
+        if (!mach)
+            throw InputError(
+                fmt::format("euler source: no Mach number for the motion; give flow.mach in the "
+                            "configuration {} or '# mach:' in the motion",
+                            cfg.source));
+        setup_ = source.setup_;
+        setup_.flow.mach = *mach;
+        setup_.flow.alpha = 0.0;
+        setup_.flow.beta = 0.0;
+        setup_.flow.validate();
+        st_ = motion_stepping(motion_, motion_label, setup_.flow.mach,
+                              settings.dt > 0.0 ? std::optional<double>(settings.dt) : std::nullopt,
+                              cfg.unsteady, cfg.control_surfaces, "euler source: time step");
+        mesh_motion_ =
+            place_mesh_motion(mesh_, motion_, setup_.reference, motion_label, cfg.control_surfaces);
+        const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
+        solver_ = std::make_unique<UnsteadySolver>(domain, comm_, setup_, st_.time);
+        solver_->set_moving_mesh({&mesh_, &dual_, [this](double, long step, Eigen::Matrix3Xd& x) {
+                                      mesh_motion_->coordinates_at(step_time(step), x, step);
+                                  }});
+        start_ = source.unsteady_start_;
+        const UnsteadySettings& t = st_.time;
+        fingerprint_ = fmt::format(
+            "{} | {} | mach={} start={} order={} max_inner={} inner_drop={} window={} tol={}",
+            source.fingerprint_, st_.fingerprint, core::format_exact(setup_.flow.mach),
+            start_ == UnsteadyStart::steady ? "steady" : "free_stream", t.order, t.max_inner,
+            t.inner_drop, t.coefficient_window, t.coefficient_tolerance);
+    }
+
+    [[nodiscard]] const aero::UnsteadySample& current() const override {
+        start();
+        return sample_;
+    }
+    const aero::UnsteadySample& step() override {
+        start();
+        if (finished())
+            throw InputError(fmt::format(
+                "euler source: step {} is past the motion's end ({} steps of {} s to t = {} s)",
+                solver_->steps() + 1, st_.n_steps, st_.dt, motion_.t.back()));
+        const TimeStepRecord rec = solver_->advance();
+        sample_ = sample(solver_->steps(), rec.forces);
+        return sample_;
+    }
+    [[nodiscard]] bool finished() const override { return solver_->steps() >= st_.n_steps; }
+    [[nodiscard]] int n_steps() const override { return st_.n_steps; }
+    [[nodiscard]] double dt() const override { return st_.dt; }
+
+    void save(const std::filesystem::path& file) const override {
+        start();
+        const TimeLevels l = solver_->time_levels();
+        const NodeStates& U = solver_->state();
+        detail::BinOut b;
+        b.buf.append(run_magic, 8);
+        b.put_string(fingerprint_);
+        b.put(static_cast<std::int32_t>(l.steps));
+        b.put(l.cfl);
+        b.put_doubles(U.data(), static_cast<std::size_t>(U.size()));
+        b.put_doubles(l.U_prev.data(), static_cast<std::size_t>(l.U_prev.size()));
+        b.put_doubles(l.x.data(), static_cast<std::size_t>(l.x.size()));
+        b.put_doubles(l.x_prev.data(), static_cast<std::size_t>(l.x_prev.size()));
+        b.put_doubles(l.swept_prev.edges.data(), l.swept_prev.edges.size());
+        b.put(static_cast<std::uint64_t>(l.swept_prev.boundary.size()));
+        for (const auto& v : l.swept_prev.boundary) b.put_doubles(v.data(), v.size());
+        const aero::UnsteadySample& s = sample_;
+        const double values[13] = {s.t,       s.body.CX, s.body.CY, s.body.CZ, s.body.Cl,
+                                   s.body.Cm, s.body.Cn, s.wind.CL, s.wind.CD, s.wind.CY,
+                                   s.alpha,   s.beta,    s.airspeed};
+        b.put(static_cast<std::int32_t>(s.index));
+        b.put_doubles(values, 13);
+        core::write_file_atomic(file, b.buf);
+    }
+
+    void restore(const std::filesystem::path& file) override {
+        const std::string name = file.string();
+        const std::string buf = core::read_file(file);
+        if (buf.size() < 8 || buf.compare(0, 8, run_magic) != 0)
+            throw InputError(fmt::format(
+                "{}: not a saved Euler-source run (no {} header); expected a file written by "
+                "its save",
+                name, std::string(run_magic, 8)));
+        detail::BinIn b{buf, 8, name, "saved Euler-source run",
+                        "expected a file written by the same source's save"};
+        const std::string fp = b.get_string();
+        if (fp != fingerprint_)
+            throw InputError(fmt::format(
+                "{}: a run of another mesh, configuration, motion or time step ({}); this run: "
+                "{}",
+                name, fp, fingerprint_));
+        const Index n = mesh_.n_nodes();
+        TimeLevels l;
+        l.steps = b.get<std::int32_t>();
+        l.cfl = b.get<double>();
+        auto sized = [&](std::vector<double> v, Index rows, const char* what, bool may_be_empty) {
+            const auto want = static_cast<std::size_t>(rows * n);
+            if (v.size() != want && !(may_be_empty && v.empty()))
+                throw InputError(
+                    fmt::format("{}: {} has {} values; expected {} ({} per node of {})", name, what,
+                                v.size(), want, rows, n));
+            return v;
+        };
+        const std::vector<double> U = sized(b.get_doubles(), 5, "the state", false);
+        const std::vector<double> U_prev = sized(b.get_doubles(), 5, "U^(n-1)", true);
+        const std::vector<double> x = sized(b.get_doubles(), 3, "the coordinates", false);
+        const std::vector<double> x_prev =
+            sized(b.get_doubles(), 3, "the previous coordinates", true);
+        l.U_prev =
+            Eigen::Map<const NodeStates>(U_prev.data(), 5, static_cast<Index>(U_prev.size() / 5));
+        l.x = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, n);
+        l.x_prev = Eigen::Map<const Eigen::Matrix3Xd>(x_prev.data(), 3,
+                                                      static_cast<Index>(x_prev.size() / 3));
+        l.swept_prev.edges = b.get_doubles();
+        const auto nb = b.get<std::uint64_t>();
+        if (nb > static_cast<std::uint64_t>(dual_.boundary.size()))
+            throw InputError(
+                fmt::format("{}: swept volumes of {} boundary markers; the mesh has {}", name, nb,
+                            dual_.boundary.size()));
+        for (std::uint64_t k = 0; k < nb; ++k) l.swept_prev.boundary.push_back(b.get_doubles());
+        const bool swept_empty = l.swept_prev.edges.empty() && l.swept_prev.boundary.empty();
+        if (l.steps < 0 || l.steps > st_.n_steps || (l.steps > 0) != (l.x_prev.cols() > 0) ||
+            (l.x_prev.cols() > 0 && (swept_empty || !l.swept_prev.fits(dual_))))
+            throw InputError(fmt::format(
+                "{}: inconsistent saved run (step {} of {}, {} previous levels); expected a file "
+                "written by the same source's save",
+                name, l.steps, st_.n_steps, l.x_prev.cols() > 0 ? 1 : 0));
+        aero::UnsteadySample s;
+        s.index = b.get<std::int32_t>();
+        const std::vector<double> v = b.get_doubles();
+        if (v.size() != 13 || s.index != l.steps || b.pos != buf.size())
+            throw InputError(fmt::format(
+                "{}: corrupt saved run (the sample of step {} at step {}, {} trailing bytes); "
+                "expected a file written by the same source's save",
+                name, s.index, l.steps, buf.size() - std::min(buf.size(), b.pos)));
+        s.t = v[0];
+        s.body = {v[1], v[2], v[3], v[4], v[5], v[6]};
+        s.wind = {v[7], v[8], v[9]};
+        s.alpha = v[10];
+        s.beta = v[11];
+        s.airspeed = v[12];
+        solver_->restore(Eigen::Map<const NodeStates>(U.data(), 5, n), l);
+        sample_ = s;
+        started_ = true;
+    }
+
+private:
+    [[nodiscard]] double step_time(long step) const { return motion_.t.front() + step * st_.dt; }
+
+    /// The sample of step k from the solver's coefficients: the case's numbers
+    /// (`motion_sample`, on rho v0^2 / 2) turned to rho airspeed^2 / 2, as aero::UnsteadySample
+    /// says.
+    [[nodiscard]] aero::UnsteadySample sample(int k, const ForceCoefficients& f) const {
+        aero::UnsteadySample s = motion_sample(motion_, step_time(k), st_.v0, f, setup_.reference);
+        s.index = k;
+        const double q = (st_.v0 / s.airspeed) * (st_.v0 / s.airspeed);
+        for (double* c : {&s.body.CX, &s.body.CY, &s.body.CZ, &s.body.Cl, &s.body.Cm, &s.body.Cn,
+                          &s.wind.CL, &s.wind.CD, &s.wind.CY})
+            *c *= q;
+        return s;
+    }
+
+    /// The start, once (lazily: a run restored from a file never computes it).
+    void start() const {
+        if (started_) return;
+        if (start_ == UnsteadyStart::steady) steady_start();
+        sample_ = sample(0, solver_->forces());
+        started_ = true;
+    }
+
+    /// The steady solution at t0 on the mesh as placed and deformed there (set_moving_mesh put
+    /// it there), in the frame moving with the reference point: the free stream is the air's
+    /// velocity relative to it, (v0, 0, 0) - its velocity in the flow frame (the rotation rates
+    /// at t0 are left out). Warm-started from the source's nearest converged steady solution,
+    /// turned with the mesh. Then Galilean-shifted back into the flow frame, whose free stream is
+    /// the unsteady solver's.
+    void steady_start() const {
+        const double t0 = step_time(0);
+        const aero::MotionState ms = motion_.at(t0);
+        const meshmotion::RigidPose pose =
+            meshmotion::rigid_pose(ms, setup_.reference.moment_point);
+        const double mach = setup_.flow.mach, v0 = st_.v0;
+        const Eigen::Vector3d rel = Eigen::Vector3d(v0, 0.0, 0.0) - pose.velocity;
+        const Eigen::Vector3d d = rel / rel.norm();
+        CaseSetup s = setup_;
+        s.flow.mach = mach * rel.norm() / v0;
+        s.flow.alpha = std::atan2(d.z(), d.x());
+        s.flow.beta = std::asin(std::clamp(-d.y(), -1.0, 1.0));
+        s.reference.area = solver_->reference_area();
+        const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
+        SteadySolver steady(domain, comm_, s);
+
+        // The nearest cached solution to the body's alpha and beta at t0 (the source's metric:
+        // degrees and Mach / 0.05), its momentum turned by the pose's rotation.
+        const Eigen::Matrix3d C = core::dcm_body_from_earth(ms.euler);
+        const Eigen::Vector3d vb =
+            C * Eigen::Vector3d(v0 + ms.velocity[0], ms.velocity[1], ms.velocity[2]);
+        const double alpha_b = std::atan2(vb.z(), vb.x()), beta_b = std::asin(vb.y() / vb.norm());
+        {
+            std::lock_guard lock(src_.mutex_);
+            const Cached* best = nullptr;
+            double best_d = std::numeric_limits<double>::infinity();
+            for (const Cached& c : src_.cache_) {
+                const double dist =
+                    std::hypot((c.alpha - alpha_b) * rad_to_deg, (c.beta - beta_b) * rad_to_deg,
+                               (c.mach - s.flow.mach) / 0.05);
+                if (dist < best_d) {
+                    best_d = dist;
+                    best = &c;
+                }
+            }
+            if (best) {
+                NodeStates U = best->U;
+                for (Index i = 0; i < U.cols(); ++i)
+                    U.block<3, 1>(1, i) = pose.rotation * U.block<3, 1>(1, i);
+                steady.warm_start(U, best->peak_log10_residual);
+            }
+        }
+        const SolveOutcome oc = steady.solve();
+        if (!oc.converged)
+            throw ConvergenceError(fmt::format(
+                "euler source: the steady start at t = {} s (M {:g}, alpha {:.4g} deg, beta "
+                "{:.4g} deg) did not converge: {}",
+                t0, s.flow.mach, alpha_b * rad_to_deg, beta_b * rad_to_deg, oc.reason));
+        // Into the flow frame: velocity + the reference point's (solver units, c_inf).
+        NodeStates U = steady.state();
+        const Eigen::Vector3d vg = pose.velocity * (mach / v0);
+        if (vg.squaredNorm() > 0.0)
+            for (Index i = 0; i < U.cols(); ++i) {
+                const double rho = U(0, i);
+                const Eigen::Vector3d m = U.block<3, 1>(1, i);
+                U(4, i) += m.dot(vg) + 0.5 * rho * vg.squaredNorm();
+                U.block<3, 1>(1, i) = m + rho * vg;
+            }
+        solver_->set_state(U);
+    }
+
+    const EulerSource& src_;
+    mutable mesh::Mesh mesh_;
+    mutable mesh::DualMetrics dual_;
+    parallel::SerialHalo halo_;
+    parallel::SerialCommunicator comm_;
+    aero::Motion motion_;
+    CaseSetup setup_;
+    MotionStepping st_;
+    std::unique_ptr<meshmotion::MeshMotion> mesh_motion_;
+    std::unique_ptr<UnsteadySolver> solver_;
+    UnsteadyStart start_ = UnsteadyStart::steady;
+    std::string fingerprint_;
+    mutable bool started_ = false;
+    mutable aero::UnsteadySample sample_;
+};
+
+std::unique_ptr<aero::UnsteadyRun> EulerSource::start_unsteady(
+    const aero::Motion& motion, const aero::UnsteadySettings& settings) const {
+    return std::make_unique<Run>(*this, motion, settings);
+}
+
+}  // namespace manta::euler
