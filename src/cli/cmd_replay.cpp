@@ -21,6 +21,7 @@
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
+#include "manta/euler/source.hpp"
 #include "manta/replay/replay.hpp"
 #include "manta/replay/trajectory.hpp"
 #include "manta/vlm/source.hpp"
@@ -37,6 +38,7 @@ constexpr double replay_strip_width = 0.02;
 
 struct ReplayArgs {
     std::string trajectory, source = "vlm", aircraft, out, tables;
+    std::string mesh, cfd_config;  // --source euler
     double dt = 0.0;
     int n_chord = replay_n_chord;
     double strip_width = replay_strip_width;
@@ -64,16 +66,23 @@ std::shared_ptr<const aero::AeroDatabase> load_tables(const std::string& tables,
 }
 
 int run_replay_command(const ReplayArgs& a) {
-    if (a.source == "euler")
+    const bool euler = a.source == "euler";
+    if (euler && a.mesh.empty())
         throw InputError(
-            "--source euler: the Euler source cannot replay yet (it cannot move its mesh); "
-            "expected --source vlm");
+            "--source euler needs --mesh FILE: the CFD mesh, whose markers --cfd-config FILE (or "
+            "the mesh's companion file) gives roles and control surfaces");
+    if (!euler && (!a.mesh.empty() || !a.cfd_config.empty()))
+        throw InputError(fmt::format(
+            "--mesh and --cfd-config are options of --source euler; expected them with it, or "
+            "neither with --source {}",
+            a.source));
     const aircraft::AircraftDefinition def = aircraft::load_aircraft(a.aircraft);
     const auto tables = load_tables(a.tables, def);
     const replay::Trajectory tr = replay::read_trajectory(a.trajectory);
 
     replay::ReplaySettings s;
     s.dt = a.dt;
+    s.whole_steps = euler;  // its run takes whole steps only (duration / N)
     s.span = def.reference.span;
     s.chord = def.reference.chord;
     s.viscous = !a.no_viscous;
@@ -103,25 +112,41 @@ int run_replay_command(const ReplayArgs& a) {
                 "VALUE > 0",
                 t));
     }
-    s.extra_fingerprint = fmt::format("n_chord={} strip_width={} wake_length={}", a.n_chord,
-                                      a.strip_width, a.wake_length);
     // The replay writes --out (checkpoints included) from here on: one command at a time.
     const core::RunFolderLock lock(a.out, "replay");
 
-    vlm::LatticeDensity density;
-    density.n_chord = a.n_chord;
-    density.strip_width = a.strip_width;
-    const VlmInput in = load_vlm_input(a.aircraft, density);
-    vlm::VlmSource source(in.model, in.geometry);
-    vlm::UnsteadyOptions uo;
-    uo.wake_length = a.wake_length;
-    uo.threads = a.threads;
-    uo.span_loading = false;
-    // The wake whose steady limit is the source's steady lattice (vlm::default_trailing_legs):
-    // convected along the free stream with free-stream legs, planar with body-axis legs (AVL).
-    uo.wake = source.trailing_legs() == vlm::TrailingLegs::freestream ? vlm::WakeModel::prescribed
+    std::unique_ptr<aero::AeroSource> source;
+    std::string source_size;
+    if (euler) {
+        // Serial time-accurate Euler CFD on the mesh (docs/replay.md#the-euler-source); the
+        // configuration's text is in the fingerprint (its control surfaces and unsteady settings
+        // change the result; the source's own fingerprint has the mesh and the numerics).
+        auto e = euler::EulerSource::from_files(a.mesh, a.cfd_config);
+        source_size = fmt::format("{} nodes", e->n_nodes());
+        s.extra_fingerprint =
+            fmt::format("euler mesh={} cfd_config={}", a.mesh,
+                        a.cfd_config.empty() ? std::string() : core::read_file(a.cfd_config));
+        source = std::move(e);
+    } else {
+        s.extra_fingerprint = fmt::format("n_chord={} strip_width={} wake_length={}", a.n_chord,
+                                          a.strip_width, a.wake_length);
+        vlm::LatticeDensity density;
+        density.n_chord = a.n_chord;
+        density.strip_width = a.strip_width;
+        const VlmInput in = load_vlm_input(a.aircraft, density);
+        auto v = std::make_unique<vlm::VlmSource>(in.model, in.geometry);
+        vlm::UnsteadyOptions uo;
+        uo.wake_length = a.wake_length;
+        uo.threads = a.threads;
+        uo.span_loading = false;
+        // The wake whose steady limit is the source's steady lattice (vlm::default_trailing_legs):
+        // convected along the free stream with free-stream legs, planar with body-axis legs (AVL).
+        uo.wake = v->trailing_legs() == vlm::TrailingLegs::freestream ? vlm::WakeModel::prescribed
                                                                       : vlm::WakeModel::planar;
-    source.set_unsteady_options(uo);
+        v->set_unsteady_options(uo);
+        source_size = fmt::format("{} vortices", v->lattice().size());
+        source = std::move(v);
+    }
 
     // A live status line on a terminal; a line every 10 s otherwise (logs).
     const bool tty = isatty(fileno(stderr)) != 0;
@@ -140,16 +165,15 @@ int run_replay_command(const ReplayArgs& a) {
             p.resumed_from >= 0 ? fmt::format(" (resumed at step {})", p.resumed_from).c_str() : "",
             tty ? "   " : "\n");
     };
-    const replay::ReplayOutcome oc = replay::run_replay(source, *tables, tr, s, a.out);
+    const replay::ReplayOutcome oc = replay::run_replay(*source, *tables, tr, s, a.out);
     if (tty && printed) std::fprintf(stderr, "\n");
     const nlohmann::json& j = oc.summary;
     if (a.json) {
         print_json(j);
         return 0;
     }
-    fmt::print("{} steps of {:.4f} s ({}) through the {} source ({} vortices) in {:.1f} s{}\n",
-               oc.steps, oc.dt, oc.dt_reason, source.name(), source.lattice().size(),
-               j.value("wall_time_s", 0.0),
+    fmt::print("{} steps of {:.4f} s ({}) through the {} source ({}) in {:.1f} s{}\n", oc.steps,
+               oc.dt, oc.dt_reason, source->name(), source_size, j.value("wall_time_s", 0.0),
                oc.resumed_from >= 0 ? fmt::format(", resumed from step {}", oc.resumed_from) : "");
     const double mismatch = j["trajectory_check"]["rate_mismatch_max"].get<double>();
     if (mismatch > 0.05)
@@ -183,8 +207,18 @@ void add_replay(CLI::App& app, Action& action) {
                     "Trajectory CSV (docs/formats.md#trajectory-csv; manta optimise/simulate)")
         ->required()
         ->check(CLI::ExistingFile);
-    cmd->add_option("--source", a->source, "Time-accurate source: vlm (euler: not yet)")
+    cmd->add_option("--source", a->source,
+                    "Time-accurate source: vlm (default) or euler (Euler CFD on --mesh; hours on "
+                    "an aircraft mesh: docs/replay.md)")
         ->check(CLI::IsMember({"vlm", "euler"}));
+    cmd->add_option("--mesh", a->mesh,
+                    "--source euler: the CFD mesh (docs/mesh.md; required with euler)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--cfd-config", a->cfd_config,
+                    "--source euler: the file `manta cfd --config` reads (docs/formats.md#cfd-"
+                    "configuration: marker roles, control_surfaces, unsteady: settings); named "
+                    "--cfd-config since it configures the CFD, not the replay")
+        ->check(CLI::ExistingFile);
     cmd->add_option("--aircraft", a->aircraft, "Aircraft file (geometry, reference, aero model)")
         ->required()
         ->check(CLI::ExistingFile);
@@ -196,14 +230,16 @@ void add_replay(CLI::App& app, Action& action) {
     cmd->add_option("--dt", a->dt, "Time step [s] (default: from the manoeuvre's time scales)")
         ->check(real_positive(1.0, "s"));
     cmd->add_option("--n-chord", a->n_chord,
-                    fmt::format("Chordwise vortices per strip (default {})", replay_n_chord))
+                    fmt::format("vlm: chordwise vortices per strip (default {})", replay_n_chord))
         ->check(integer_in(1, 100));
     cmd->add_option("--strip-width", a->strip_width,
-                    fmt::format("Strip width / span (default {})", replay_strip_width))
+                    fmt::format("vlm: strip width / span (default {})", replay_strip_width))
         ->check(real_in(1e-4, 0.5));
-    cmd->add_option("--wake-length", a->wake_length, "Wake kept [reference chords] (default 10)")
+    cmd->add_option("--wake-length", a->wake_length,
+                    "vlm: wake kept [reference chords] (default 10)")
         ->check(real_positive(1000.0, "chords"));
-    cmd->add_option("--threads", a->threads, "Worker threads (default 0: all)")
+    cmd->add_option("--threads", a->threads,
+                    "vlm: worker threads (default 0: all; euler runs serial)")
         ->check(integer_in(0, 256));
     cmd->add_option("--tolerance", a->tolerances,
                     "Flag tolerance NAME=VALUE (CL CD CY Cl Cm Cn; defaults in docs/replay.md)");
@@ -215,7 +251,8 @@ void add_replay(CLI::App& app, Action& action) {
         ->check(real_in(0.0, 1e6, "s"));
     cmd->add_flag("--restart", a->restart, "Discard a checkpoint in --out and start afresh");
     cmd->add_flag("--keep-checkpoint", a->keep_checkpoint, "Keep --out/checkpoint when done");
-    cmd->add_flag("--no-viscous", a->no_viscous, "Leave out the viscous drag estimate");
+    cmd->add_flag("--no-viscous", a->no_viscous,
+                  "Leave out the viscous drag estimate (vlm; euler has none)");
     cmd->add_flag("--json", a->json, "Print summary.json on stdout");
     cmd->callback([a, &action] { action = [a]() -> int { return run_replay_command(*a); }; });
 }

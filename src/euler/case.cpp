@@ -116,7 +116,7 @@ void orient_mesh(mesh::Mesh& m, const CfdConfig& config) {
 MotionStepping motion_stepping(const aero::Motion& motion, const std::string& src, double mach,
                                std::optional<double> given_dt, const UnsteadySettings& inner,
                                const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
-                               const std::string& dt_what) {
+                               const std::string& dt_what, const std::string& motion_what) {
     if (motion.metadata.mach && std::abs(*motion.metadata.mach - mach) > 1e-6)
         throw InputError(
             fmt::format("{}: '# mach: {}' differs from the flow's Mach number {}; give one of them",
@@ -144,9 +144,10 @@ MotionStepping motion_stepping(const aero::Motion& motion, const std::string& sr
     const double n = std::round(duration / dt);
     if (!(dt > 0) || n < 1 || std::abs(n * dt - duration) > 1e-9 * duration)
         throw InputError(fmt::format(
-            "{} {} s does not divide the duration {} s of the motion {}; expected a time step "
-            "of duration / N (such as {:.6g} s)",
-            dt_what, dt, duration, src, duration / std::max(1.0, std::isfinite(n) ? n : 1.0)));
+            "{} {} s does not divide the duration {} s of {}; expected a time step of duration / "
+            "N (such as {:.6g} s)",
+            dt_what, dt, duration, motion_what.empty() ? "the motion " + src : motion_what,
+            duration / std::max(1.0, std::isfinite(n) ? n : 1.0)));
     st.n_steps = static_cast<int>(n);
     st.dt = duration / n;  // exactly N steps
     const double c_inf = st.v0 / mach;

@@ -56,7 +56,8 @@ public:
         setup_.flow.validate();
         st_ = motion_stepping(motion_, motion_label, setup_.flow.mach,
                               settings.dt > 0.0 ? std::optional<double>(settings.dt) : std::nullopt,
-                              cfg.unsteady, cfg.control_surfaces, "euler source: time step");
+                              cfg.unsteady, cfg.control_surfaces, "euler source: time step",
+                              "the motion");
         mesh_motion_ =
             place_mesh_motion(mesh_, motion_, setup_.reference, motion_label, cfg.control_surfaces);
         const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};

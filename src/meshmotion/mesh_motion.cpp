@@ -290,7 +290,9 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
                 vmax = std::abs(motion_.modes[k][i]);
                 tmax = motion_.t[i];
             }
-        if (vmax == 0.0) continue;
+        // Below 1e-9 rad (round-off of a trimmed trajectory's lateral controls, 1e-25 say) a
+        // mode is taken as still: it needs no control surface.
+        if (vmax <= 1e-9) continue;
         const bool driven = std::any_of(specs_.begin(), specs_.end(), [&](const auto& c) {
             return c.mode == motion_.mode_names[k];
         });

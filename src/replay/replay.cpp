@@ -150,6 +150,12 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
         choice = choose_time_step(tr, s.rule, s.chord);
     }
     const double duration = tr.t.back() - tr.t.front();
+    if (s.whole_steps && s.dt <= 0.0 && choice.dt > 0.0 && choice.dt < duration) {
+        const double n = std::ceil(duration / choice.dt - 1e-9);
+        choice.dt = duration / n;
+        choice.reason +=
+            fmt::format("; rounded down to {:.0f} whole steps of the {} s", n, duration);
+    }
     if (!(choice.dt > 0.0 && std::isfinite(choice.dt) && choice.dt <= duration))
         throw InputError(
             fmt::format("replay: time step {} s; expected > 0 and at most the trajectory's {} s",

@@ -94,11 +94,82 @@ contains "theta located" "$work/err.txt" "theta.csv:$((h + 3)), column 6 'theta'
 cut -d, -f1-8 "$work/traj.csv" > "$work/short.csv"
 check "missing columns" 2 "$manta" replay --trajectory "$work/short.csv" --aircraft "$ranger" --out "$work/bad"
 contains "missing columns named" "$work/err.txt" "missing column\(s\) alpha, beta, p, q, r, elevator, aileron, rudder"
-check "euler source" 2 "$manta" replay --trajectory "$work/traj.csv" --aircraft "$ranger" --out "$work/bad" --source euler
-contains "euler cannot replay" "$work/err.txt" "Euler source cannot replay yet"
+check "euler source without --mesh" 2 "$manta" replay --trajectory "$work/traj.csv" --aircraft "$ranger" --out "$work/bad" --source euler
+contains "euler needs --mesh" "$work/err.txt" "source euler needs --mesh FILE"
 one_line "euler one line" "$work/err.txt"
 check "bad tolerance" 2 "$manta" replay --trajectory "$work/traj.csv" --aircraft "$ranger" --out "$work/bad" --tolerance CQ=1
 if [ ! -e "$work/bad" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: an error wrote output"; fi
+
+
+# The Euler source (docs/replay.md#the-euler-source) on a box of 6 x 8 x 2 hexahedra (189 nodes)
+# whose floor z = 0 is a wall with a flap (1 <= x <= 2, 0.25 <= y <= 0.75, hinge x = 1) driven by
+# the elevator: outputs, the automatic time step rounded to whole steps, kill -9 and the same
+# command resuming to the uninterrupted comparison.csv byte for byte, and one-line refusals.
+python3 - "$work/box.su2" <<'PY'
+import sys
+nx, ny, nz = 6, 8, 2
+def nid(i, j, k): return i + (nx + 1) * (j + (ny + 1) * k)
+faces = {"flap": [], "wall": [], "farfield": []}
+cells = [[nid(i, j, k), nid(i + 1, j, k), nid(i + 1, j + 1, k), nid(i, j + 1, k), nid(i, j, k + 1),
+          nid(i + 1, j, k + 1), nid(i + 1, j + 1, k + 1), nid(i, j + 1, k + 1)]
+         for k in range(nz) for j in range(ny) for i in range(nx)]
+for j in range(ny):  # quadrilaterals ordered for outward normals
+    for i in range(nx):
+        xc, yc = (i + 0.5) * 3.0 / nx, (j + 0.5) / ny
+        faces["flap" if 1 <= xc <= 2 and 0.25 <= yc <= 0.75 else "wall"].append(
+            [nid(i, j, 0), nid(i, j + 1, 0), nid(i + 1, j + 1, 0), nid(i + 1, j, 0)])
+        faces["farfield"].append([nid(i, j, nz), nid(i + 1, j, nz), nid(i + 1, j + 1, nz), nid(i, j + 1, nz)])
+for k in range(nz):
+    for j in range(ny):
+        faces["farfield"].append([nid(0, j, k), nid(0, j, k + 1), nid(0, j + 1, k + 1), nid(0, j + 1, k)])
+        faces["farfield"].append([nid(nx, j, k), nid(nx, j + 1, k), nid(nx, j + 1, k + 1), nid(nx, j, k + 1)])
+    for i in range(nx):
+        faces["farfield"].append([nid(i, 0, k), nid(i + 1, 0, k), nid(i + 1, 0, k + 1), nid(i, 0, k + 1)])
+        faces["farfield"].append([nid(i, ny, k), nid(i, ny, k + 1), nid(i + 1, ny, k + 1), nid(i + 1, ny, k)])
+with open(sys.argv[1], "w") as f:
+    f.write(f"NDIME= 3\nNELEM= {len(cells)}\n")
+    for c, nodes in enumerate(cells): f.write("12 " + " ".join(map(str, nodes)) + f" {c}\n")
+    f.write(f"NPOIN= {(nx + 1) * (ny + 1) * (nz + 1)}\n")
+    for k in range(nz + 1):
+        for j in range(ny + 1):
+            for i in range(nx + 1):
+                f.write(f"{i * 3.0 / nx!r} {j / ny!r} {k / nz!r} {nid(i, j, k)}\n")
+    f.write(f"NMARK= {len(faces)}\n")
+    for name, fl in faces.items():
+        f.write(f"MARKER_TAG= {name}\nMARKER_ELEMS= {len(fl)}\n")
+        for q in fl: f.write("9 " + " ".join(map(str, q)) + "\n")
+PY
+printf 'markers: {flap: wall, wall: wall, farfield: farfield}\nreference: {area: 1, chord: 1, span: 1, moment_point: [1, 0.5, 0]}\nunsteady: {max_inner: 3}\n' > "$work/box_noflap.yaml"
+{ cat "$work/box_noflap.yaml"; printf 'control_surfaces:\n  - {mode: elevator, marker: flap, hinge: [[1, 0.25, 0], [1, 0.75, 0]]}\n'; } > "$work/box.yaml"
+eargs=(--trajectory "$work/traj.csv" --aircraft "$ranger" --source euler --mesh "$work/box.su2" --cfd-config "$work/box.yaml")
+check "replay euler" 0 "$manta" replay "${eargs[@]}" --out "$work/e1" --json
+contains "euler summary source" "$work/e1/summary.json" '"source": "euler"'
+contains "euler dt in whole steps" "$work/e1/summary.json" '"dt_reason": ".*rounded down to [0-9]+ whole steps'
+contains "euler comparison rows" "$work/e1/comparison.csv" "^2,"
+check "replay euler text" 0 "$manta" replay "${eargs[@]}" --out "$work/e2" --dt 0.01
+contains "euler stdout names the nodes" "$work/out.txt" "200 steps of 0.0100 s .*through the euler source \(189 nodes\)"
+contains "euler progress line" "$work/err.txt" "step 200/200"
+ekill=("${eargs[@]}" --dt 0.004 --checkpoint-steps 25)
+check "replay euler uninterrupted" 0 "$manta" replay "${ekill[@]}" --out "$work/efull"
+"$manta" replay "${ekill[@]}" --out "$work/ekilled" >"$work/kill_out.txt" 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do [ -f "$work/ekilled/checkpoint/checkpoint.json" ] && break; kill -0 $pid 2>/dev/null || break; sleep 0.01; done
+if kill -9 $pid 2>/dev/null; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: the euler replay ended before it could be killed"; fi
+wait $pid 2>/dev/null
+check "replay euler after kill -9" 0 "$manta" replay "${ekill[@]}" --out "$work/ekilled" --json
+contains "euler continued from a checkpoint" "$work/out.txt" '"resumed_from_step": [1-9][0-9]*'
+if cmp -s "$work/efull/comparison.csv" "$work/ekilled/comparison.csv"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: euler comparison.csv after kill -9 differs from the uninterrupted run"; fi
+# The elevator deflects and the configuration has no control surface for it; a time step that
+# does not divide the trajectory; --mesh without --source euler.
+check "euler elevator without control surface" 2 "$manta" replay --trajectory "$work/traj.csv" --aircraft "$ranger" --source euler --mesh "$work/box.su2" --cfd-config "$work/box_noflap.yaml" --out "$work/bad"
+contains "names the elevator" "$work/err.txt" "mode 'elevator' deflects"
+one_line "no control surface one line" "$work/err.txt"
+check "euler dt that does not divide" 2 "$manta" replay "${eargs[@]}" --out "$work/bad" --dt 0.003
+contains "dt does not divide" "$work/err.txt" "time step 0.003 s does not divide the duration 2 s"
+one_line "dt one line" "$work/err.txt"
+check "--mesh without euler" 2 "$manta" replay --trajectory "$work/traj.csv" --aircraft "$ranger" --mesh "$work/box.su2" --out "$work/bad"
+one_line "--mesh without euler one line" "$work/err.txt"
+if [ ! -e "$work/bad/comparison.csv" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: an euler error wrote output"; fi
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -385,8 +385,12 @@ TEST(MeshMotionErrors, ModesMarkersAndControlSurfacesMustMatch) {
     s.marker = "flap";
     msg = message(still_motion(), {s, s});
     EXPECT_NE(msg.find("two control surfaces"), std::string::npos) << msg;
-    // Zero-valued modes need no control surface.
+    // Zero-valued modes need no control surface, nor round-off (a trimmed trajectory's 2e-25 rad
+    // of aileron); 1e-8 rad does.
     EXPECT_EQ(message(still_motion(), {}), "");
+    EXPECT_EQ(message(deflection_motion("flap", 2e-25), {}), "");
+    EXPECT_NE(message(deflection_motion("flap", 1e-8), {}).find("mode 'flap' deflects"),
+              std::string::npos);
 }
 
 }  // namespace

@@ -110,13 +110,14 @@ struct MotionStepping {
 /// The time stepping along `motion` (named `source` in messages) at the flow's Mach number `mach`
 /// with the inner settings `inner` (its dt is replaced) and the control surfaces `surfaces`.
 /// `dt`: the physical time step [s] (none: the motion's sample spacing, which must then be
-/// even); `dt_what` names it in messages ("manta cfd: --dt"). InputError (one line) when the
+/// even); `dt_what` names it in messages ("manta cfd: --dt"), `motion_what` the motion there
+/// (empty: "the motion " + source). InputError (one line) when the
 /// motion's `# mach:` differs from `mach`, when it has no `# v0:`, when the samples are uneven
 /// without `dt`, and when the time step does not divide the motion's duration.
 [[nodiscard]] MotionStepping motion_stepping(
     const aero::Motion& motion, const std::string& source, double mach, std::optional<double> dt,
     const UnsteadySettings& inner, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
-    const std::string& dt_what = "manta cfd: --dt");
+    const std::string& dt_what = "manta cfd: --dt", const std::string& motion_what = {});
 
 /// The mesh's motion along `motion` about the reference values' moment point, with the control
 /// surfaces `surfaces`, every sample of the motion checked (meshmotion::MeshMotion::check_motion).

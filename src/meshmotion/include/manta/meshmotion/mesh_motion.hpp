@@ -120,8 +120,9 @@ struct ControlSurfaceInfo {
 class MeshMotion {
 public:
     /// InputError (one line) for a marker that is not in the mesh, a hinge line off its surface,
-    /// a control surface whose mode the motion lacks, a mode that deflects with no control surface,
-    /// and for an invalid motion (aero::Motion::validate). The mesh must be finalized.
+    /// a control surface whose mode the motion lacks, a mode that deflects (by more than 1e-9 rad)
+    /// with no control surface, and for an invalid motion (aero::Motion::validate). The mesh must
+    /// be finalized.
     MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacement placement,
                std::vector<ControlSurfaceSpec> surfaces, const DeformationOptions& options = {});
 

@@ -47,6 +47,9 @@ struct ReplaySettings {
     /// Time step [s]; 0: choose_time_step(trajectory, rule).
     double dt = 0.0;
     TimeStepRule rule;
+    /// Round the chosen time step (dt 0) down to the trajectory's duration / N, for a source
+    /// whose run takes whole steps only (euler); a given dt is left as it is.
+    bool whole_steps = false;
     /// Motion sample step [s]: the time step divided into equal parts no longer than this.
     double max_sample_dt = 0.01;
     /// Reference span and chord [m] of the rates' non-dimensionalisation (p b / 2V, q c / 2V).
