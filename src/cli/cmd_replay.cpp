@@ -124,8 +124,8 @@ int run_replay_command(const ReplayArgs& a) {
         auto e = euler::EulerSource::from_files(a.mesh, a.cfd_config);
         source_size = fmt::format("{} nodes", e->n_nodes());
         s.extra_fingerprint =
-            fmt::format("euler mesh={} cfd_config={}", a.mesh,
-                        a.cfd_config.empty() ? std::string() : core::read_file(a.cfd_config));
+            "euler cfd_config=" +
+            (a.cfd_config.empty() ? std::string() : core::read_file(a.cfd_config));
         source = std::move(e);
     } else {
         s.extra_fingerprint = fmt::format("n_chord={} strip_width={} wake_length={}", a.n_chord,
