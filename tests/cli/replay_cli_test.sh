@@ -153,7 +153,7 @@ ekill=("${eargs[@]}" --dt 0.004 --checkpoint-steps 25)
 check "replay euler uninterrupted" 0 "$manta" replay "${ekill[@]}" --out "$work/efull"
 "$manta" replay "${ekill[@]}" --out "$work/ekilled" >"$work/kill_out.txt" 2>&1 &
 pid=$!
-for _ in $(seq 1 600); do [ -f "$work/ekilled/checkpoint/checkpoint.json" ] && break; kill -0 $pid 2>/dev/null || break; sleep 0.01; done
+for _ in $(seq 1 600); do [ -f "$work/ekilled/checkpoint/checkpoint.json" ] && break; kill -0 $pid 2>/dev/null || break; sleep 0.02; done
 if kill -9 $pid 2>/dev/null; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: the euler replay ended before it could be killed"; fi
 wait $pid 2>/dev/null
 check "replay euler after kill -9" 0 "$manta" replay "${ekill[@]}" --out "$work/ekilled" --json
