@@ -38,7 +38,7 @@ constexpr double replay_strip_width = 0.02;
 
 struct ReplayArgs {
     std::string trajectory, source = "vlm", aircraft, out, tables;
-    std::string mesh, cfd_config;  // --source euler
+    std::string mesh, cfd_config, cfd_start = "steady";  // --source euler
     double dt = 0.0;
     int n_chord = replay_n_chord;
     double strip_width = replay_strip_width;
@@ -71,9 +71,10 @@ int run_replay_command(const ReplayArgs& a) {
         throw InputError(
             "--source euler needs --mesh FILE: the CFD mesh, whose markers --cfd-config FILE (or "
             "the mesh's companion file) gives roles and control surfaces");
-    if (!euler && (!a.mesh.empty() || !a.cfd_config.empty()))
+    if (!euler && (!a.mesh.empty() || !a.cfd_config.empty() || a.cfd_start != "steady"))
         throw InputError(fmt::format(
-            "--mesh and --cfd-config are options of --source euler; expected them with it, or "
+            "--mesh, --cfd-config and --cfd-start are options of --source euler; expected them "
+            "with it, or "
             "neither with --source {}",
             a.source));
     const aircraft::AircraftDefinition def = aircraft::load_aircraft(a.aircraft);
@@ -122,10 +123,12 @@ int run_replay_command(const ReplayArgs& a) {
         // configuration's text is in the fingerprint (its control surfaces and unsteady settings
         // change the result; the source's own fingerprint has the mesh and the numerics).
         auto e = euler::EulerSource::from_files(a.mesh, a.cfd_config);
+        e->set_unsteady_start(a.cfd_start == "free-stream" ? euler::UnsteadyStart::free_stream
+                                                           : euler::UnsteadyStart::steady);
         source_size = fmt::format("{} nodes", e->n_nodes());
         s.extra_fingerprint =
-            "euler cfd_config=" +
-            (a.cfd_config.empty() ? std::string() : core::read_file(a.cfd_config));
+            "euler start=" + a.cfd_start +
+            " cfd_config=" + (a.cfd_config.empty() ? std::string() : core::read_file(a.cfd_config));
         source = std::move(e);
     } else {
         s.extra_fingerprint = fmt::format("n_chord={} strip_width={} wake_length={}", a.n_chord,
@@ -219,6 +222,10 @@ void add_replay(CLI::App& app, Action& action) {
                     "configuration: marker roles, control_surfaces, unsteady: settings); named "
                     "--cfd-config since it configures the CFD, not the replay")
         ->check(CLI::ExistingFile);
+    cmd->add_option("--cfd-start", a->cfd_start,
+                    "--source euler: steady (default: the steady solution at the entry state) or "
+                    "free-stream (as manta cfd --motion, with a start transient)")
+        ->check(CLI::IsMember({"steady", "free-stream"}));
     cmd->add_option("--aircraft", a->aircraft, "Aircraft file (geometry, reference, aero model)")
         ->required()
         ->check(CLI::ExistingFile);

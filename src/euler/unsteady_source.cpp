@@ -264,7 +264,9 @@ private:
         if (!oc.converged)
             throw ConvergenceError(fmt::format(
                 "euler source: the steady start at t = {} s (M {:g}, alpha {:.4g} deg, beta "
-                "{:.4g} deg) did not converge: {}",
+                "{:.4g} deg) did not converge: {}; expected convergence (raise solver."
+                "max_iterations or lower solver.residual_drop in the configuration, or start "
+                "from the free stream)",
                 t0, s.flow.mach, alpha_b * rad_to_deg, beta_b * rad_to_deg, oc.reason));
         // Into the flow frame: velocity + the reference point's (solver units, c_inf).
         NodeStates U = steady.state();

@@ -149,6 +149,15 @@ contains "euler comparison rows" "$work/e1/comparison.csv" "^2,"
 check "replay euler text" 0 "$manta" replay "${eargs[@]}" --out "$work/e2" --dt 0.01
 contains "euler stdout names the nodes" "$work/out.txt" "200 steps of 0.0100 s .*through the euler source \(189 nodes\)"
 contains "euler progress line" "$work/err.txt" "step 200/200"
+# --cfd-start free-stream: the first row carries no load; the steady start (e2) does.
+check "replay euler free-stream start" 0 "$manta" replay "${eargs[@]}" --out "$work/e3" --dt 0.01 --cfd-start free-stream
+if python3 - "$work/e2/comparison.csv" "$work/e3/comparison.csv" <<'PY'
+import csv, sys
+steady, free = (float(next(csv.DictReader(open(f)))["CL_replay"]) for f in sys.argv[1:3])
+print(f"CL at t0: steady start {steady:.4f}, free stream {free:.1e}")
+assert abs(free) < 1e-12 and abs(steady) > 0.01, (steady, free)
+PY
+then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: --cfd-start"; fi
 ekill=("${eargs[@]}" --dt 0.004 --checkpoint-steps 25)
 check "replay euler uninterrupted" 0 "$manta" replay "${ekill[@]}" --out "$work/efull"
 "$manta" replay "${ekill[@]}" --out "$work/ekilled" >"$work/kill_out.txt" 2>&1 &
