@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -26,6 +27,7 @@ namespace {
 constexpr double rad_to_deg = 57.29577951308232;
 constexpr char run_magic[9] = "MANTAES1";
 constexpr const char* motion_label = "euler source: motion";
+constexpr std::array<const char*, 3> mode_names{"elevator", "aileron", "rudder"};
 
 }  // namespace
 
@@ -34,21 +36,15 @@ public:
     Run(const EulerSource& source, const aero::Motion& motion,
         const aero::UnsteadySettings& settings)
         : src_(source), mesh_(source.mesh_), dual_(source.dual_), motion_(motion) {
-        const struct {
-            const std::optional<double>& mach;
-            const std::string& source;
-            const UnsteadySettings& unsteady;
-            const std::vector<meshmotion::ControlSurfaceSpec>& control_surfaces;
-        } cfg{source.unsteady_mach_, source.config_label_, source.unsteady_inner_,
-              source.surfaces_};
         // The case's order of set-up (case.cpp, CfdCase::Impl::prepare), so that a run started
         // from the free stream gives `manta cfd --motion`'s coefficients bit for bit.
-        const std::optional<double> mach = cfg.mach ? cfg.mach : motion_.metadata.mach;
+        const std::optional<double> mach =
+            source.unsteady_mach_ ? source.unsteady_mach_ : motion_.metadata.mach;
         if (!mach)
             throw InputError(
                 fmt::format("euler source: no Mach number for the motion; give flow.mach in the "
-                            "configuration {} or '# mach:' in the motion",
-                            cfg.source));
+                            "configuration ({}) or '# mach:' in the motion",
+                            source.config_label_));
         setup_ = source.setup_;
         setup_.flow.mach = *mach;
         setup_.flow.alpha = 0.0;
@@ -56,10 +52,10 @@ public:
         setup_.flow.validate();
         st_ = motion_stepping(motion_, motion_label, setup_.flow.mach,
                               settings.dt > 0.0 ? std::optional<double>(settings.dt) : std::nullopt,
-                              cfg.unsteady, cfg.control_surfaces, "euler source: time step",
+                              source.unsteady_inner_, source.surfaces_, "euler source: time step",
                               "the motion");
         mesh_motion_ =
-            place_mesh_motion(mesh_, motion_, setup_.reference, motion_label, cfg.control_surfaces);
+            place_mesh_motion(mesh_, motion_, setup_.reference, motion_label, source.surfaces_);
         const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
         solver_ = std::make_unique<UnsteadySolver>(domain, comm_, setup_, st_.time);
         solver_->set_moving_mesh({&mesh_, &dual_, [this](double, long step, Eigen::Matrix3Xd& x) {
@@ -234,8 +230,9 @@ private:
         const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
         SteadySolver steady(domain, comm_, s);
 
-        // The nearest cached solution to the body's alpha and beta at t0 (the source's metric:
-        // degrees and Mach / 0.05), its momentum turned by the pose's rotation.
+        // The nearest cached solution to the body's alpha, beta and deflections at t0 with no
+        // rates (the source's metric: degrees, Mach / 0.05, rates / 0.01), its momentum turned
+        // by the pose's rotation.
         const Eigen::Matrix3d C = core::dcm_body_from_earth(ms.euler);
         const Eigen::Vector3d vb =
             C * Eigen::Vector3d(v0 + ms.velocity[0], ms.velocity[1], ms.velocity[2]);
@@ -244,10 +241,18 @@ private:
             std::lock_guard lock(src_.mutex_);
             const Cached* best = nullptr;
             double best_d = std::numeric_limits<double>::infinity();
+            std::array<double, 3> deflection{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const int m = motion_.find_mode(mode_names[k]);
+                if (m >= 0) deflection[k] = ms.modes[static_cast<std::size_t>(m)];
+            }
             for (const Cached& c : src_.cache_) {
-                const double dist =
-                    std::hypot((c.alpha - alpha_b) * rad_to_deg, (c.beta - beta_b) * rad_to_deg,
-                               (c.mach - s.flow.mach) / 0.05);
+                double dist = std::pow((c.alpha - alpha_b) * rad_to_deg, 2) +
+                              std::pow((c.beta - beta_b) * rad_to_deg, 2) +
+                              std::pow((c.mach - s.flow.mach) / 0.05, 2);
+                for (std::size_t k = 0; k < 3; ++k)
+                    dist += std::pow(c.rates[k] / 0.01, 2) +
+                            std::pow((c.deflection[k] - deflection[k]) * rad_to_deg, 2);
                 if (dist < best_d) {
                     best_d = dist;
                     best = &c;
