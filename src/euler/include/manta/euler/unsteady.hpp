@@ -40,6 +40,13 @@ struct UnsteadySettings {
     double inner_drop = 3.0;  ///< orders of the density residual below the step's peak
     int coefficient_window = 3;  ///< inner iterations over which CL, CD, CY must have settled
     double coefficient_tolerance = 1e-6;  ///< largest change of CL, CD, CY over the window
+    /// Start the inner iterations of a second-order step from U^n + (U^n - U^(n-1)) (linear
+    /// extrapolation; U^n where that is not physical) instead of U^n. The residual drop counts
+    /// from R*(U^n) either way, so the stopping rule asks for the same residual level.
+    bool extrapolate = false;
+    /// Assemble the Jacobian and the preconditioner at every k-th inner iteration of a step (the
+    /// first included) and reuse them in between; 1: every inner iteration.
+    int jacobian_interval = 1;
     /// InputError naming the setting for a value out of range.
     void validate() const;
 };
