@@ -84,7 +84,7 @@ print("manta", float(wall) / steps, (float(user) + float(sys_)) / steps,
       s["inner_iterations_per_step"], sys.argv[4], sys.argv[5], int(rss) / 1024,
       s["seconds_per_step"])
 PY
-    tail -1 "$results" | awk '{printf "round %s MANTA: %.2f s wall, %.2f s CPU, %.1f inner per step (solve %.2f s wall), load %s -> %s\n", '"$r"', $2, $3, $4, $9, $5, $6}'
+    tail -1 "$results" | awk '{printf "round %s MANTA: %.2f s wall, %.2f s CPU, %.1f inner per step (solve %.2f s wall), load %s -> %s\n", '"$r"', $2, $3, $4, $8, $5, $6}'
     # SU2
     l0=$(load)
     (cd "$work/su2" && rm -f history_bench.csv && "$timer" -f "%e %U %S %M" -o "../su2.$r.time" \
