@@ -1,5 +1,6 @@
 // The implicit Euler solver's linear algebra (manta/euler/block_matrix.hpp): block ILU(0)
-// factorisation, its application, the block matrix-vector product and one 20-iteration FGMRES
+// factorisation, its application, block symmetric Gauss-Seidel's set-up (inverted diagonal
+// blocks) and application, the block matrix-vector product and one 20-iteration FGMRES
 // solve, on the edge graph of a tetrahedral grid of 47^3 = 103 823 nodes (the Freudenthal
 // split of each cube into six tetrahedra: 14 neighbours per interior node, as in a typical
 // tetrahedral mesh) with random diagonally dominant 5x5 blocks.
@@ -136,6 +137,26 @@ void BM_multiply(benchmark::State& state) {
     per_node(state, s, s.A.memory_bytes());
 }
 BENCHMARK(BM_multiply)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void BM_sgs_factorize(benchmark::State& state) {
+    System& s = system(state.range(0) != 0);
+    euler::BlockSgs M;
+    for (auto _ : state) M.factorize(s.A);
+    per_node(state, s, M.memory_bytes());
+}
+BENCHMARK(BM_sgs_factorize)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void BM_sgs_apply(benchmark::State& state) {
+    System& s = system(state.range(0) != 0);
+    euler::BlockSgs M;
+    M.factorize(s.A);
+    for (auto _ : state) {
+        M.apply(s.b, s.x);
+        benchmark::ClobberMemory();
+    }
+    per_node(state, s, M.memory_bytes());
+}
+BENCHMARK(BM_sgs_apply)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_fgmres_20(benchmark::State& state) {
     System& s = system(state.range(0) != 0);

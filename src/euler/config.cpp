@@ -151,6 +151,9 @@ CfdConfig read(const ConfigNode& root) {
             "coefficient_window", t.coefficient_window, NumberSpec::range(2, 1e6, "-")));
         t.coefficient_tolerance = u.number_or("coefficient_tolerance", t.coefficient_tolerance,
                                               NumberSpec::positive("-"));
+        t.extrapolate = u.boolean_or("extrapolate", t.extrapolate);
+        t.jacobian_interval = static_cast<int>(u.integer_or(
+            "jacobian_interval", t.jacobian_interval, NumberSpec::range(1, 1000, "-")));
         c.output_every = static_cast<int>(
             u.integer_or("output_every", c.output_every, NumberSpec::range(0, 1e9, "steps")));
         u.finish();

@@ -99,12 +99,14 @@ void PseudoTimeStep::begin(IterationState& it) {
 }
 
 void PseudoTimeStep::update_geometry() {
+    matrix_current_ = false;
     op_.update_geometry();
     if (op_first_) op_first_->update_geometry();
 }
 
 void PseudoTimeStep::set_grid_fluxes(const mesh::DualFaceValues* g,
                                      const Eigen::Matrix3Xd* node_velocities) {
+    matrix_current_ = false;
     op_.set_grid_fluxes(g, node_velocities);
     if (op_first_) op_first_->set_grid_fluxes(g, node_velocities);
 }
@@ -121,6 +123,26 @@ std::array<double, 5> PseudoTimeStep::rms_residual() const {
     for (double& v : s)
         v = std::sqrt(v / static_cast<double>(std::max<std::int64_t>(1, n_global_nodes_)));
     return s;
+}
+
+void PseudoTimeStep::evaluate(SpatialOperator& op, const NodeStates& U, const StepTerms& terms) {
+    const Index n_owned = domain_.n_owned;
+    op.residual(U, R_);
+    op.spectral_radii(U, lambda_);
+    // R* = R + D U - S (before the strong wall tangency, which projects the momentum rows).
+    if (!terms.diagonal.empty())
+        for (Index i = 0; i < n_owned; ++i)
+            R_.col(i) += terms.diagonal[static_cast<std::size_t>(i)] * U.col(i);
+    if (terms.source) R_.leftCols(n_owned) -= terms.source->leftCols(n_owned);
+    op.apply_wall_tangency(U, lambda_, R_);
+}
+
+double PseudoTimeStep::log10_density_residual(const NodeStates& U, const StepTerms& terms) {
+    if (U.cols() != R_.cols() || U.rows() != 5)
+        throw InputError(fmt::format("pseudo-time step: the state has {} nodes; the mesh has {}",
+                                     U.cols(), R_.cols()));
+    evaluate(op_, U, terms);
+    return std::log10(std::max(rms_residual()[0], 1e-300));
 }
 
 ForceCoefficients PseudoTimeStep::forces(const NodeStates& U) const {
@@ -265,6 +287,7 @@ StepOutcome PseudoTimeStep::step(NodeStates& U, IterationState& it, const StopRu
                 "(solver.first_order_iterations) or order 1",
                 domain_.mesh->source(), it.iteration, why, s.max_backoffs, it.cfl));
         std::copy(U_good_.begin(), U_good_.end(), U.data());
+        matrix_current_ = false;
         it.cfl_cap = std::max(s.cfl_initial * 0.1, 0.25 * std::min(it.cfl, it.cfl_cap));
         it.cfl = std::max(0.1 * it.cfl_good, 0.1);
         it.cfl_good = it.cfl;
@@ -276,14 +299,7 @@ StepOutcome PseudoTimeStep::step(NodeStates& U, IterationState& it, const StopRu
 
     const bool first_order = op_first_ && it.iteration < s.first_order_iterations;
     SpatialOperator& op = first_order ? *op_first_ : op_;
-    op.residual(U, R_);
-    op.spectral_radii(U, lambda_);
-    // R* = R + D U - S (before the strong wall tangency, which projects the momentum rows).
-    if (!terms.diagonal.empty())
-        for (Index i = 0; i < n_owned; ++i)
-            R_.col(i) += terms.diagonal[static_cast<std::size_t>(i)] * U.col(i);
-    if (terms.source) R_.leftCols(n_owned) -= terms.source->leftCols(n_owned);
-    op.apply_wall_tangency(U, lambda_, R_);
+    evaluate(op, U, terms);
     const std::array<double, 5> rms = rms_residual();
     IterationRecord& rec = out.record;
     rec.iteration = it.iteration;
@@ -377,27 +393,32 @@ StepOutcome PseudoTimeStep::step(NodeStates& U, IterationState& it, const StopRu
     }
     it = std::move(next);
 
-    // (V / dt + D + dR/dU) dU = -R* with dt_i = CFL V_i / lambda_i.
-    op.jacobian(U, J_);
-    if (terms.diagonal.empty()) {
-        for (Index i = 0; i < n_owned; ++i)
-            J_.add_to_diagonal(i, lambda_[static_cast<std::size_t>(i)] / it.cfl);
-    } else {
-        for (Index i = 0; i < n_owned; ++i)
-            J_.add_to_diagonal(i, lambda_[static_cast<std::size_t>(i)] / it.cfl +
-                                      terms.diagonal[static_cast<std::size_t>(i)]);
+    // (V / dt + D + dR/dU) dU = -R* with dt_i = CFL V_i / lambda_i; or the last step's matrix
+    // and preconditioner when the caller asks for them and they are current.
+    if (!(terms.reuse_matrix && matrix_current_ && !first_order)) {
+        matrix_current_ = false;
+        op.jacobian(U, J_);
+        if (terms.diagonal.empty()) {
+            for (Index i = 0; i < n_owned; ++i)
+                J_.add_to_diagonal(i, lambda_[static_cast<std::size_t>(i)] / it.cfl);
+        } else {
+            for (Index i = 0; i < n_owned; ++i)
+                J_.add_to_diagonal(i, lambda_[static_cast<std::size_t>(i)] / it.cfl +
+                                          terms.diagonal[static_cast<std::size_t>(i)]);
+        }
+        op.apply_wall_tangency(lambda_, it.cfl, J_);
+        // A singular pivot on any process sends every process back (the same decision on all).
+        std::string pivot_error;
+        try {
+            precond_->factorize(J_);
+        } catch (const NumericalError& e) {
+            pivot_error = e.what();
+        }
+        if (comm_.max(pivot_error.empty() ? 0.0 : 1.0) > 0.0)
+            return back_off(pivot_error.empty() ? "singular ILU pivot on another process"
+                                                : pivot_error);
+        matrix_current_ = true;
     }
-    op.apply_wall_tangency(lambda_, it.cfl, J_);
-    // A singular pivot on any process sends every process back (the same decision on all).
-    std::string pivot_error;
-    try {
-        precond_->factorize(J_);
-    } catch (const NumericalError& e) {
-        pivot_error = e.what();
-    }
-    if (comm_.max(pivot_error.empty() ? 0.0 : 1.0) > 0.0)
-        return back_off(pivot_error.empty() ? "singular ILU pivot on another process"
-                                            : pivot_error);
     // J dU = R* (R*'s owned columns are the right-hand side), then U -= dU.
     std::fill(dU_.begin(), dU_.end(), 0.0);
     const KrylovResult kr = krylov_.solve(

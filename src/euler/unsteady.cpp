@@ -45,6 +45,7 @@ void UnsteadySettings::validate() const {
     need(inner_drop > 0 && inner_drop <= 16, "inner_drop", inner_drop, "0 < orders <= 16");
     need(coefficient_window >= 2, "coefficient_window", coefficient_window, "an integer >= 2");
     need(coefficient_tolerance > 0, "coefficient_tolerance", coefficient_tolerance, "a number > 0");
+    need(jacobian_interval >= 1, "jacobian_interval", jacobian_interval, "an integer >= 1");
 }
 
 UnsteadySolver::UnsteadySolver(const Domain& domain, const parallel::Communicator& comm,
@@ -243,12 +244,24 @@ TimeStepRecord UnsteadySolver::advance(const Monitor& inner) {
     NodeStates U_n = U_;
 
     // The inner iterations: a fresh iteration state (its peak, window and back-offs are this
-    // step's) at the last step's CFL number, from U^n.
+    // step's) at the last step's CFL number, from U^n or its extrapolation.
     IterationState it = step_.initial_state();
     it.cfl = std::min(cfl_, it.cfl_cap);
     it.cfl_good = it.cfl;
     step_.set_backoff_state(U_);
     step_.begin(it);
+    StepTerms terms{D_, &S_};
+    if (t.extrapolate && bdf2) {
+        // The drop counts from R*(U^n), the residual the step would start from.
+        it.peak_log10_residual = step_.log10_density_residual(U_, terms);
+        const double gamma = setup().flow.gamma;
+        for (Index i = 0; i < d.n_owned; ++i) {
+            const Vec5 Ue = 2.0 * U_n.col(i) - U_prev_.col(i);
+            const Vec5 W = primitive(Ue, gamma);
+            if (W[0] > 0.0 && W[4] > 0.0 && Ue.allFinite()) U_.col(i) = Ue;
+        }
+        step_.exchange(U_);
+    }
     const StopRule rule = [&t](const StepStatus& st) {
         StopDecision dec;
         if ((st.drop >= t.inner_drop && st.settled) || st.at_roundoff) {
@@ -259,9 +272,9 @@ TimeStepRecord UnsteadySolver::advance(const Monitor& inner) {
         }
         return dec;
     };
-    const StepTerms terms{D_, &S_};
     TimeStepRecord rec;
     while (true) {
+        terms.reuse_matrix = it.iteration % t.jacobian_interval != 0;
         const StepOutcome so = step_.step(U_, it, rule, terms);
         if (so.result == StepResult::backed_off) continue;
         rec.residual_drop = so.status.drop;

@@ -205,7 +205,8 @@ TEST(UnsteadyMoving, ConfigurationKeys) {
     const manta::euler::CfdConfig c = manta::euler::parse_cfd_config(
         "mesh: {up: y}\n"
         "unsteady: {order: 1, max_inner: 12, inner_drop: 2.5, coefficient_window: 4,\n"
-        "           coefficient_tolerance: 1e-5, output_every: 5}\n"
+        "           coefficient_tolerance: 1e-5, output_every: 5, extrapolate: true,\n"
+        "           jacobian_interval: 2}\n"
         "control_surfaces:\n"
         "  - {mode: elevator, marker: flap, hinge: [[1, 0.25, 0], [1, 0.75, 0]], gain: -1}\n",
         "cfd.yaml");
@@ -215,14 +216,16 @@ TEST(UnsteadyMoving, ConfigurationKeys) {
     EXPECT_EQ(c.unsteady.inner_drop, 2.5);
     EXPECT_EQ(c.unsteady.coefficient_window, 4);
     EXPECT_EQ(c.unsteady.coefficient_tolerance, 1e-5);
+    EXPECT_TRUE(c.unsteady.extrapolate);
+    EXPECT_EQ(c.unsteady.jacobian_interval, 2);
     EXPECT_EQ(c.output_every, 5);
     ASSERT_EQ(c.control_surfaces.size(), 1U);
     EXPECT_EQ(c.control_surfaces[0].marker, "flap");
     EXPECT_EQ(c.control_surfaces[0].gain, -1.0);
     EXPECT_EQ(c.control_surfaces[0].hinge[1].y(), 0.75);
     for (const char* bad :
-         {"unsteady: {order: 3}\n", "mesh: {up: x}\n", "unsteady: {max_steps: 3}\n",
-          "control_surfaces: [{mode: elevator}]\n"}) {
+         {"unsteady: {order: 3}\n", "unsteady: {jacobian_interval: 0}\n", "mesh: {up: x}\n",
+          "unsteady: {max_steps: 3}\n", "control_surfaces: [{mode: elevator}]\n"}) {
         try {
             (void)manta::euler::parse_cfd_config(bad, "cfd.yaml");
             ADD_FAILURE() << bad;

@@ -68,6 +68,8 @@ public:
     [[nodiscard]] std::span<const std::int64_t> row_offsets() const noexcept { return rows_; }
     [[nodiscard]] std::span<const Index> columns() const noexcept { return cols_; }
     [[nodiscard]] std::span<const float> values() const noexcept { return values_; }
+    /// Positions of the diagonal blocks, one per owned row.
+    [[nodiscard]] std::span<const std::int64_t> diagonals() const noexcept { return diag_; }
 
 private:
     Index n_rows_ = 0;

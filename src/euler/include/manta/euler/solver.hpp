@@ -167,6 +167,11 @@ struct StepTerms {
     std::span<const double> diagonal;
     /// S, 5 x n_local (the owned columns are read); null: none.
     const NodeStates* source = nullptr;
+    /// Solve with the matrix and preconditioner of the last step that assembled them instead of
+    /// assembling new ones (a chord iteration: the dual-time solver's `jacobian_interval`). Taken
+    /// only while they are current: after a back-off, `update_geometry` or `set_grid_fluxes` the
+    /// next step assembles whatever this says.
+    bool reuse_matrix = false;
 };
 
 /// What a stopping rule sees: the state at the start of a step, before its update.
@@ -240,6 +245,11 @@ public:
     void set_grid_fluxes(const mesh::DualFaceValues* g,
                          const Eigen::Matrix3Xd* node_velocities = nullptr);
 
+    /// log10 of the RMS density residual of R*(U) = R(U) + D U - S (after strong wall tangency),
+    /// as `step` computes it, without a step (U 5 x n_local, ghosts current). Overwrites the
+    /// residual that `residual()` returns.
+    [[nodiscard]] double log10_density_residual(const NodeStates& U, const StepTerms& terms = {});
+
     /// Wall forces of U.
     [[nodiscard]] ForceCoefficients forces(const NodeStates& U) const;
     /// The reference area used (the configured one, or the projected wall area).
@@ -269,6 +279,8 @@ public:
 
 private:
     [[nodiscard]] std::array<double, 5> rms_residual() const;
+    /// R* of U into R_ and the spectral radii into lambda_ (with `op`).
+    void evaluate(SpatialOperator& op, const NodeStates& U, const StepTerms& terms);
 
     const Domain domain_;
     const parallel::Communicator& comm_;
@@ -285,6 +297,7 @@ private:
     Fgmres krylov_;
     std::vector<double> lambda_;
     std::vector<double> dU_;
+    bool matrix_current_ = false;  ///< J_ and precond_ assembled since the last change of geometry
     std::int64_t n_global_nodes_ = 0;
     double log10_roundoff_ = -300.0;  ///< density residual at round-off level
 };

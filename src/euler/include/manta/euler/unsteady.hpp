@@ -39,7 +39,14 @@ struct UnsteadySettings {
     int max_inner = 50;       ///< cap on the inner iterations of a physical step
     double inner_drop = 3.0;  ///< orders of the density residual below the step's peak
     int coefficient_window = 3;  ///< inner iterations over which CL, CD, CY must have settled
-    double coefficient_tolerance = 1e-6;  ///< largest change of CL, CD, CY over the window
+    double coefficient_tolerance = 1e-5;  ///< largest change of CL, CD, CY over the window
+    /// Start the inner iterations of a second-order step from U^n + (U^n - U^(n-1)) (linear
+    /// extrapolation; U^n where that is not physical) instead of U^n. The residual drop counts
+    /// from R*(U^n) either way, so the stopping rule asks for the same residual level.
+    bool extrapolate = true;
+    /// Assemble the Jacobian and the preconditioner at every k-th inner iteration of a step (the
+    /// first included) and reuse them in between; 1: every inner iteration.
+    int jacobian_interval = 3;
     /// InputError naming the setting for a value out of range.
     void validate() const;
 };
