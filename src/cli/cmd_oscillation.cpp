@@ -142,8 +142,11 @@ int run_oscillation(const OscillationArgs& a) {
         vs->set_unsteady_options(so);
         source = std::move(vs);
     } else {
-        const euler::CfdConfig cfg =
+        // The reference lengths as the source will have them: the configuration's, else the
+        // mesh companion file's (EulerSource::from_files).
+        euler::CfdConfig cfg =
             a.config.empty() ? euler::CfdConfig{} : euler::read_cfd_config(a.config);
+        euler::apply_mesh_companion(cfg, a.mesh);
         const euler::CaseSetup setup = euler::case_setup(cfg);
         o.chord = setup.reference.chord;
         o.span = setup.reference.span;
