@@ -1,5 +1,5 @@
-/// `manta vlm-unsteady`: the unsteady vortex lattice along a motion file; `manta vlm-oscillation`:
-/// dynamic derivatives by forced harmonic oscillation.
+/// `manta vlm-unsteady`: the unsteady vortex lattice along a motion file (`manta vlm-oscillation`
+/// is in cmd_oscillation.cpp).
 
 #include <fmt/format.h>
 
@@ -21,8 +21,6 @@
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
-#include "manta/core/units.hpp"
-#include "manta/vlm/dynamic.hpp"
 #include "manta/vlm/unsteady.hpp"
 
 namespace manta::cli {
@@ -135,83 +133,6 @@ void run_unsteady(const UnsteadyArgs& a) {
                (out / "wake.vtu").string(), (out / "summary.json").string());
 }
 
-struct OscillationArgs {
-    std::string aircraft;
-    std::string axis = "pitch";
-    double k = 0.05;
-    double amplitude_deg = 1.0;
-    double alpha_deg = 0.0;
-    double mach = 0.0;
-    int periods = 3;
-    int steps_per_period = 48;
-    int n_chord = 6;
-    double strip_width = 0.02;
-    bool json = false;
-};
-
-void run_oscillation(const OscillationArgs& a) {
-    vlm::LatticeDensity density;
-    density.n_chord = a.n_chord;
-    density.strip_width = a.strip_width;
-    const VlmInput in = load_vlm_input(a.aircraft, density);
-    vlm::ForcedOscillationOptions o;
-    if (a.axis == "pitch")
-        o.axis = aero::OscillationAxis::pitch;
-    else if (a.axis == "roll")
-        o.axis = aero::OscillationAxis::roll;
-    else if (a.axis == "yaw")
-        o.axis = aero::OscillationAxis::yaw;
-    else if (a.axis == "plunge")
-        o.axis = aero::OscillationAxis::plunge;
-    else
-        throw InputError(fmt::format(
-            "vlm-oscillation: --axis '{}'; expected pitch, roll, yaw or plunge", a.axis));
-    o.reduced_frequency = a.k;
-    o.amplitude = a.amplitude_deg * core::deg_to_rad;
-    o.alpha0 = a.alpha_deg * core::deg_to_rad;
-    o.n_periods = a.periods;
-    o.steps_per_period = a.steps_per_period;
-    o.solver.mach = a.mach;
-    const vlm::ForcedOscillationResult r =
-        vlm::forced_oscillation(in.model, vlm::build_lattice(in.model), o);
-    static const char* names[6] = {"CL", "CD", "CY", "Cl", "Cm", "Cn"};
-    nlohmann::json j;
-    j["aircraft"] = a.aircraft;
-    j["axis"] = a.axis;
-    j["reduced_frequency"] = a.k;
-    j["amplitude"] = o.amplitude;
-    j["alpha0"] = o.alpha0;
-    j["mach"] = a.mach;
-    j["omega"] = r.omega;
-    for (int c = 0; c < 6; ++c) {
-        const auto& x = r.coefficients[static_cast<std::size_t>(c)];
-        j["coefficients"][names[c]] = {{"mean", x.mean},
-                                       {"in_phase_fourier", x.fourier.in_phase},
-                                       {"out_of_phase_fourier", x.fourier.out_of_phase},
-                                       {"in_phase_regression", x.regression.in_phase},
-                                       {"out_of_phase_regression", x.regression.out_of_phase},
-                                       {"r_squared", x.regression.r_squared}};
-    }
-    if (a.json) {
-        print_json(j);
-        return;
-    }
-    fmt::print("{} oscillation, k = {}, amplitude {} deg, alpha0 {} deg, Mach {}\n", a.axis, a.k,
-               a.amplitude_deg, a.alpha_deg, a.mach);
-    fmt::print("{:>4} {:>12} {:>14} {:>14} {:>14} {:>14}\n", "", "mean", "in-phase (F)",
-               "out-phase (F)", "in-phase (R)", "out-phase (R)");
-    for (int c = 0; c < 6; ++c) {
-        const auto& x = r.coefficients[static_cast<std::size_t>(c)];
-        fmt::print("{:>4} {:12.5f} {:14.5f} {:14.5f} {:14.5f} {:14.5f}\n", names[c], x.mean,
-                   x.fourier.in_phase, x.fourier.out_of_phase, x.regression.in_phase,
-                   x.regression.out_of_phase);
-    }
-    fmt::print(
-        "(F: Fourier over the last {} periods; R: linear regression; see "
-        "docs/forced-oscillation.md for what each axis measures)\n",
-        a.periods - 1);
-}
-
 }  // namespace
 
 void add_vlm_unsteady(CLI::App& app, Action& action) {
@@ -246,41 +167,6 @@ void add_vlm_unsteady(CLI::App& app, Action& action) {
     cmd->callback([a, &action] {
         action = [a]() -> int {
             run_unsteady(*a);
-            return 0;
-        };
-    });
-
-    auto* osc = app.add_subcommand(
-        "vlm-oscillation",
-        "Dynamic derivatives by forced harmonic oscillation of the unsteady vortex lattice:\n"
-        "in-phase and out-of-phase derivatives of the six coefficients by Fourier analysis and by\n"
-        "linear regression (docs/forced-oscillation.md).");
-    auto b = std::make_shared<OscillationArgs>();
-    osc->add_option("--aircraft", b->aircraft, "Aircraft file: MANTA YAML or AVL geometry (.avl)")
-        ->required()
-        ->check(CLI::ExistingFile);
-    osc->add_option("--axis", b->axis, "pitch, roll, yaw or plunge (default pitch)");
-    osc->add_option("--k", b->k, "Reduced frequency (c/2V pitch and plunge, b/2V roll and yaw)")
-        ->check(real_positive(10.0));
-    osc->add_option("--amplitude-deg", b->amplitude_deg, "Amplitude [deg] (default 1)")
-        ->check(real_positive(30.0, "deg"));
-    osc->add_option("--alpha-deg", b->alpha_deg, "Mean angle of attack [deg] (default 0)")
-        ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
-    osc->add_option("--mach", b->mach, "Mach number (default 0)")->check(real_in(0.0, 0.95));
-    osc->add_option("--periods", b->periods, "Periods simulated, the first discarded (default 3)")
-        ->check(integer_in(2, 100));
-    osc->add_option("--steps-per-period", b->steps_per_period, "Time steps per period (default 48)")
-        ->check(integer_in(8, 10000));
-    osc->add_option("--n-chord", b->n_chord,
-                    "Chordwise vortices per strip (MANTA files; default 6)")
-        ->check(integer_in(1, 100));
-    osc->add_option("--strip-width", b->strip_width,
-                    "Strip width / span (MANTA files; default 0.02)")
-        ->check(real_in(1e-4, 0.5));
-    osc->add_flag("--json", b->json, "Print one JSON object");
-    osc->callback([b, &action] {
-        action = [b]() -> int {
-            run_oscillation(*b);
             return 0;
         };
     });

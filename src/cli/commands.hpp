@@ -26,6 +26,8 @@ void add_simulate(CLI::App& app, Action& action);
 void add_demo(CLI::App& app, Action& action);
 void add_vlm(CLI::App& app, Action& action);
 void add_vlm_unsteady(CLI::App& app, Action& action);
+/// `oscillation` and its alias `vlm-oscillation` (cmd_oscillation.cpp).
+void add_oscillation(CLI::App& app, Action& action);
 void add_optimise(CLI::App& app, Action& action);
 void add_tables(CLI::App& app, Action& action);
 void add_replay(CLI::App& app, Action& action);

@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
     cli::add_demo(app, action);
     cli::add_vlm(app, action);
     cli::add_vlm_unsteady(app, action);
+    cli::add_oscillation(app, action);
     cli::add_optimise(app, action);
     cli::add_tables(app, action);
     cli::add_replay(app, action);

@@ -92,6 +92,21 @@ VlmSource::VlmSource(Model model, std::optional<geometry::AircraftGeometry> geom
       geometry_(std::move(geometry)),
       viscous_options_(std::move(viscous)),
       trailing_legs_(legs.value_or(default_trailing_legs(geometry_.has_value()))) {
+    init();
+}
+
+VlmSource::VlmSource(Model model, Lattice lattice,
+                     std::optional<geometry::AircraftGeometry> geometry, ViscousDragOptions viscous,
+                     std::optional<TrailingLegs> legs)
+    : model_(std::move(model)),
+      lattice_(std::move(lattice)),
+      geometry_(std::move(geometry)),
+      viscous_options_(std::move(viscous)),
+      trailing_legs_(legs.value_or(default_trailing_legs(geometry_.has_value()))) {
+    init();
+}
+
+void VlmSource::init() {
     // The unsteady lattice's default wake has the steady lattice's legs as its steady limit.
     if (trailing_legs_ == TrailingLegs::body_axis) unsteady_options_.wake = WakeModel::planar;
     check_lattice(model_, lattice_);

@@ -38,7 +38,7 @@ check "manta --help" 0 "$manta" --help
 contains "help lists subcommands" "$work/out.txt" "atmosphere"
 check "manta --version" 0 "$manta" --version
 contains "version text" "$work/out.txt" "manta [0-9]+\.[0-9]+\.[0-9]+"
-for sub in atmosphere "config check" trim modes simulate demo vlm vlm-unsteady vlm-oscillation tables optimise replay report; do
+for sub in atmosphere "config check" trim modes simulate demo vlm vlm-unsteady vlm-oscillation oscillation tables optimise replay report; do
     # shellcheck disable=SC2086
     check "manta $sub --help" 0 "$manta" $sub --help
 done
@@ -121,6 +121,48 @@ check "vlm-oscillation" 0 "$manta" vlm-oscillation --aircraft "$work/plate.avl" 
 json_ok "vlm-oscillation json"
 contains "oscillation out of phase" "$work/out.txt" '"out_of_phase_fourier"'
 check "vlm-oscillation bad axis" 2 "$manta" vlm-oscillation --aircraft "$work/plate.avl" --axis spin
+# oscillation --source vlm|euler (vlm-oscillation is its vlm case): the same derivatives, its
+# JSON keys, a checkpoint that a rerun answers from, and bad options as one-line errors.
+one_line() {  # one_line NAME  (stderr of the last check: one line, besides CLI11's help hint)
+    if [ "$(grep -vc '^Run with --help' "$work/err.txt")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: stderr is not one line"; sed 's/^/    /' "$work/err.txt" | head -5; fi
+}
+osc_args=(--aircraft "$work/plate.avl" --axis pitch --k 0.05 --alpha-deg 2 --steps-per-period 16 --json)
+check "vlm-oscillation pitch" 0 "$manta" vlm-oscillation "${osc_args[@]}"
+cp "$work/out.txt" "$work/vlm_osc.json"
+check "oscillation --source vlm" 0 "$manta" oscillation --source vlm "${osc_args[@]}"
+json_ok "oscillation json"
+cp "$work/out.txt" "$work/osc.json"
+for key in '"source": "vlm"' '"omega"' '"steps": 48' '"resumed_from": -1' '"in_phase_regression"' '"r_squared"' '"Cm"'; do
+    contains "oscillation json $key" "$work/osc.json" "$key"
+done
+if python3 -c 'import json,sys; a,b=(json.load(open(f)) for f in sys.argv[1:]); sys.exit(0 if a["coefficients"]==b["coefficients"] else 1)' "$work/vlm_osc.json" "$work/osc.json"; then
+    pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: oscillation --source vlm and vlm-oscillation differ"; fi
+check "oscillation checkpoint" 0 "$manta" oscillation "${osc_args[@]}" --checkpoint "$work/osc.ckpt" --checkpoint-seconds 0 --history "$work/osc_history.csv"
+contains "oscillation history" "$work/osc_history.csv" "^t,CL,CD,CY,Cl,Cm,Cn"
+check "oscillation resumes from a finished checkpoint" 0 "$manta" oscillation "${osc_args[@]}" --checkpoint "$work/osc.ckpt"
+contains "oscillation resumed" "$work/out.txt" '"resumed_from": 48'
+if python3 -c 'import json,sys; a,b=(json.load(open(f)) for f in sys.argv[1:]); sys.exit(0 if a["coefficients"]==b["coefficients"] else 1)' "$work/osc.json" "$work/out.txt"; then
+    pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: oscillation from its checkpoint differs"; fi
+check "oscillation checkpoint of another run" 2 "$manta" oscillation --aircraft "$work/plate.avl" --k 0.1 --steps-per-period 16 --checkpoint "$work/osc.ckpt"
+contains "another run named" "$work/err.txt" "osc.ckpt: checkpoint of another oscillation"
+one_line "checkpoint of another run"
+check "oscillation bad axis" 2 "$manta" oscillation --aircraft "$work/plate.avl" --axis spin
+contains "bad axis message" "$work/err.txt" "--axis 'spin'; expected pitch, roll, yaw or plunge"
+one_line "bad axis"
+for bad in "--k 0" "--k -0.1" "--periods 1" "--steps-per-period 4" "--amplitude-deg 0" "--source cfd" "--checkpoint-seconds -1"; do
+    # shellcheck disable=SC2086
+    check "oscillation $bad" 2 "$manta" oscillation --aircraft "$work/plate.avl" $bad
+    one_line "oscillation $bad"
+done
+check "oscillation euler without a mesh" 2 "$manta" oscillation --source euler
+contains "euler needs a mesh" "$work/err.txt" "--source euler: no --mesh"
+one_line "euler without a mesh"
+check "oscillation euler with vlm options" 2 "$manta" oscillation --source euler --mesh "$work/plate.avl" --n-chord 4
+contains "euler refuses vlm options" "$work/err.txt" "are for --source vlm"
+check "oscillation vlm without an aircraft" 2 "$manta" oscillation --source vlm
+contains "vlm needs an aircraft" "$work/err.txt" "--source vlm: no --aircraft"
+check "oscillation vlm with a mesh" 2 "$manta" oscillation --aircraft "$work/plate.avl" --mesh "$work/plate.avl"
+contains "vlm refuses --mesh" "$work/err.txt" "--mesh and --config are for --source euler"
 
 # tables: a small analytic campaign, errors, kill -9 and resume, changed source fingerprint
 campaigns=$root/examples/campaigns

@@ -1,11 +1,11 @@
 #pragma once
 /// @file dynamic.hpp
-/// Dynamic derivatives by forced harmonic oscillation with the unsteady vortex lattice, extracted
-/// from the force histories by Fourier analysis and by linear regression (aero/oscillation.hpp),
-/// as the paper does with its CFD (docs/forced-oscillation.md).
+/// Dynamic derivatives by forced harmonic oscillation with the unsteady vortex lattice: the
+/// source-generic driver `aero::forced_oscillation` (aero/forced_oscillation.hpp) on a
+/// `VlmSource` of the model and lattice, the reference lengths those of the model
+/// (docs/forced-oscillation.md).
 
-#include <array>
-
+#include "manta/aero/forced_oscillation.hpp"
 #include "manta/aero/motion.hpp"
 #include "manta/aero/oscillation.hpp"
 #include "manta/vlm/lattice.hpp"
@@ -33,15 +33,17 @@ struct ForcedOscillationOptions {
 /// of the oscillating angle and per non-dimensional rate (see docs/forced-oscillation.md for the
 /// combination each axis measures: pitch C_q + C_alphadot, roll C_p + C_betadot sin alpha0, yaw
 /// C_r cos alpha0 - C_p sin alpha0 - C_betadot, about the motion's axes).
-struct ForcedOscillationResult {
-    ForcedOscillationOptions options;
-    double omega = 0.0;  ///< [rad/s]
-    std::array<aero::OscillationResult, 6> coefficients;
-    UnsteadyHistory history;
-};
+using ForcedOscillationResult = aero::ForcedOscillationResult;
 
-/// Run the oscillation and analyse it. InputError for options out of range.
-[[nodiscard]] ForcedOscillationResult forced_oscillation(const Model& model, const Lattice& lattice,
-                                                         const ForcedOscillationOptions& options);
+/// The generic driver's options for `model`: the axis, amplitude, frequency, mean, speed and
+/// periods of `o`, the model's reference chord and span, `o.solver.mach` as the Mach number.
+[[nodiscard]] aero::ForcedOscillationOptions oscillation_options(const Model& model,
+                                                                 const ForcedOscillationOptions& o);
+
+/// Run the oscillation and analyse it: aero::forced_oscillation on VlmSource(model, lattice) with
+/// `o.solver` as its unsteady options (speed v0 = o.speed). InputError for options out of range.
+[[nodiscard]] ForcedOscillationResult forced_oscillation(
+    const Model& model, const Lattice& lattice, const ForcedOscillationOptions& options,
+    const aero::ForcedOscillationCallback& progress = {});
 
 }  // namespace manta::vlm

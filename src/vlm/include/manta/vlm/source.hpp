@@ -39,6 +39,10 @@ public:
     explicit VlmSource(Model model, std::optional<geometry::AircraftGeometry> geometry = {},
                        ViscousDragOptions viscous = {},
                        std::optional<TrailingLegs> legs = std::nullopt);
+    /// As above on a lattice built beforehand from `model` (build_lattice, possibly altered;
+    /// InputError if check_lattice refuses it).
+    VlmSource(Model model, Lattice lattice, std::optional<geometry::AircraftGeometry> geometry = {},
+              ViscousDragOptions viscous = {}, std::optional<TrailingLegs> legs = std::nullopt);
 
     [[nodiscard]] std::string name() const override { return "vlm"; }
     [[nodiscard]] std::string fingerprint() const override;
@@ -75,6 +79,7 @@ public:
     [[nodiscard]] std::optional<ViscousDrag> viscous(double mach, double reynolds_per_metre) const;
 
 private:
+    void init();  ///< trailing legs, default unsteady wake, lattice check, fingerprint
     Model model_;
     Lattice lattice_;
     std::optional<geometry::AircraftGeometry> geometry_;
