@@ -427,7 +427,33 @@ AdaptiveSolution solve_adaptive(const Model& model, const Mesh& mesh, const Gues
     AdaptiveSolution res;
     Mesh current = mesh;
     Guess start = guess;
+    // the last converged pass, to refine again from when a solve on its refinement fails
     bool have_converged = false;
+    bool retried = false;
+    RefinementOptions active = ropt;  // min_nodes raised to max_nodes after a failed solve
+    Solution last;
+    Mesh last_mesh;
+    std::vector<double> last_errors;
+    std::vector<int> last_user, last_event;
+
+    // the next mesh from the last converged pass, with the junctions mapped onto it
+    auto advance = [&](const RefinementOptions& o) {
+        std::vector<int> old_index;
+        Mesh next = refine_mesh(last, last_mesh, last_errors, o, &old_index);
+        std::vector<int> new_user(next.breaks.size(), -1);
+        std::vector<int> new_of_old(last_mesh.breaks.size(), -1);
+        for (std::size_t j = 0; j < old_index.size(); ++j) {
+            if (old_index[j] >= 0) {
+                new_user[j] = last_user[old_index[j]];
+                new_of_old[old_index[j]] = static_cast<int>(j);
+            }
+        }
+        event_junction = last_event;
+        for (int e = 0; e < ne; ++e) event_junction[e] = new_of_old[event_junction[e]];
+        user_junction = std::move(new_user);
+        return next;
+    };
+
     for (int pass = 1;; ++pass) {
         const RemappedModel m(model, user_junction, event_junction);
         Solution sol = solve(m, current, start, solver_options);
@@ -441,12 +467,23 @@ AdaptiveSolution solve_adaptive(const Model& model, const Mesh& mesh, const Gues
         rec.final_time = sol.final_time;
         rec.total_nodes = total_nodes(current);
         if (!sol.converged()) {
-            res.status = RefinementStatus::solve_failed;
-            res.status_text =
-                fmt::format("refinement pass {} did not converge ({}: {}); returned {}", pass,
-                            to_string(rec.status), sol.status_text,
-                            have_converged ? "the last converged solution" : "its best iterate");
+            const std::string why = fmt::format("refinement pass {} did not converge ({}: {})",
+                                                pass, to_string(rec.status), sol.status_text);
             res.passes.push_back(std::move(rec));
+            if (have_converged && !retried && pass < ropt.max_passes) {
+                // once: split into fewer, higher-degree pieces (min_nodes = max_nodes), and so
+                // for the rest of the run
+                active.min_nodes = ropt.max_nodes;
+                Mesh next = advance(active);
+                if (next.nodes != current.nodes && total_nodes(next) <= ropt.max_total_nodes) {
+                    retried = true;
+                    current = std::move(next);
+                    continue;  // start is still the last converged solution
+                }
+            }
+            res.status = RefinementStatus::solve_failed;
+            res.status_text = why + (have_converged ? "; returned the last converged solution"
+                                                    : "; returned its best iterate");
             if (!have_converged) {
                 res.solution = std::move(sol);
                 res.mesh = current;
@@ -461,8 +498,13 @@ AdaptiveSolution solve_adaptive(const Model& model, const Mesh& mesh, const Gues
         res.mesh = current;
         res.interior_junctions = event_junction;
         have_converged = true;
-        std::vector<int> old_index;
-        Mesh next = refine_mesh(sol, current, rec.segment_errors, ropt, &old_index);
+        retried = false;
+        last = sol;
+        last_mesh = current;
+        last_errors = rec.segment_errors;
+        last_user = user_junction;
+        last_event = event_junction;
+        Mesh next = advance(active);
         if (rec.max_error <= ropt.tolerance && next.nodes == current.nodes) {
             res.status = RefinementStatus::tolerance_met;
             res.status_text = fmt::format(
@@ -489,17 +531,6 @@ AdaptiveSolution solve_adaptive(const Model& model, const Mesh& mesh, const Gues
                 rec.max_error, ropt.tolerance, total_nodes(next), ropt.max_total_nodes);
             return res;
         }
-        // map the junctions onto the new mesh
-        std::vector<int> new_user(next.breaks.size(), -1);
-        std::vector<int> new_of_old(current.breaks.size(), -1);
-        for (std::size_t j = 0; j < old_index.size(); ++j) {
-            if (old_index[j] >= 0) {
-                new_user[j] = user_junction[old_index[j]];
-                new_of_old[old_index[j]] = static_cast<int>(j);
-            }
-        }
-        for (int e = 0; e < ne; ++e) event_junction[e] = new_of_old[event_junction[e]];
-        user_junction = std::move(new_user);
         current = std::move(next);
         start = Guess::from_solution(sol);
     }

@@ -119,18 +119,18 @@ TEST(RefineValidation, MinTimeToClimbFromTenPoints) {
     // alone, ten points do not resolve the optimum
     const Solution coarse = solve(*m, Mesh::uniform(1, 10), p.guess());
     EXPECT_EQ(coarse.status, SolveStatus::solved_unresolved);
-    // with N_min 4, N_max 12 the second pass (4 x 4 points) is infeasible from this start
+    // default options: the second pass (4 x 4 points) is infeasible from this start; its retry
+    // splits into 12-point pieces, as do the later passes
     RefinementOptions ro;
-    ro.min_nodes = 10;
-    ro.max_nodes = 20;
     const AdaptiveSolution r = solve_adaptive(*m, Mesh::uniform(1, 10), p.guess(), {}, ro);
     std::printf("%s", refinement_report(r).c_str());
     std::printf("t_f %.6f s\n", r.solution.final_time);
     ASSERT_TRUE(r.solution.resolved()) << r.status_text;
-    // within 0.1 % of PSOPT's documented 321.11 s (as test_problems_validation.cpp); PSOPT's
-    // measured 321.1089 s is not reached within 0.02 s in ten passes (docs/optimal-control.md)
+    EXPECT_EQ(r.status, RefinementStatus::tolerance_met) << r.status_text;
+    // within 0.1 % of PSOPT's documented 321.11 s (as test_problems_validation.cpp); the
+    // refined optimum, 321.138 s, is 0.03 s above PSOPT's measured 321.1089 s
+    // (docs/optimal-control.md, error-driven mesh refinement)
     EXPECT_LT(std::abs(r.solution.final_time - 321.11) / 321.11, 1e-3);
-    EXPECT_LT(r.passes.back().max_error, 1e-4);
     expect_never_coarser(r);
 }
 

@@ -65,7 +65,7 @@ enum class RefinementStatus {
     tolerance_met,  ///< every segment's error estimate at or below the tolerance
     pass_limit,     ///< max_passes solves done, the tolerance not met
     node_limit,     ///< the next mesh would have more than max_total_nodes points
-    solve_failed    ///< a solve did not converge (the last converged solution is returned)
+    solve_failed    ///< a solve (and its retry) did not converge; the last converged solution
 };
 /// Name of a refinement status ("tolerance_met", ...).
 [[nodiscard]] std::string to_string(RefinementStatus status);
@@ -111,6 +111,9 @@ struct AdaptiveSolution {
 /// Solve on `mesh`, estimate the segment errors, refine (refine_mesh) and solve again from the
 /// previous solution (Guess::from_solution) until every error is at most the tolerance, or
 /// max_passes solves were made, or the next mesh exceeds max_total_nodes, or a solve fails.
+/// When the solve on a refined mesh fails, the refinement of the last converged pass is made
+/// once more with min_nodes = max_nodes (fewer pieces of higher degree, and so for the rest of
+/// the run) and solved (a pass of its own); a second failure in a row stops.
 /// Interior events stay at their junctions: the model is wrapped so that the problem's
 /// `interior(j, ...)` still receives the junction index of the first mesh. Throws InputError
 /// for bad options, mesh or guess.
