@@ -323,9 +323,13 @@ std::string refinement_report(const AdaptiveSolution& res) {
             }
             per += std::to_string(p.mesh.nodes[k]);
         }
-        r += fmt::format("{:>4} {:>8} {:>6} {:>10.3e} {:>8} {:>6.3f} {:>16} {:>14.10g}  {}\n",
-                         p.pass, p.mesh.n_segments(), p.total_nodes, p.max_error, p.iterations,
-                         p.cpu_s, to_string(p.status), p.objective, per);
+        const bool converged = p.status == SolveStatus::solved ||
+                               p.status == SolveStatus::solved_acceptable ||
+                               p.status == SolveStatus::solved_unresolved;
+        r += fmt::format("{:>4} {:>8} {:>6} {:>10} {:>8} {:>6.3f} {:>16} {:>14.10g}  {}\n", p.pass,
+                         p.mesh.n_segments(), p.total_nodes,
+                         converged ? fmt::format("{:.3e}", p.max_error) : std::string("-"),
+                         p.iterations, p.cpu_s, to_string(p.status), p.objective, per);
     }
     r += to_string(res.status) + ": " + res.status_text + "\n";
     return r;
