@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "detail/transcription.hpp"
 #include "manta/core/error.hpp"
+#include "manta/optimal/refine.hpp"
 #include "manta/optimal/solve.hpp"
 
 namespace manta::optimal {
@@ -104,66 +106,58 @@ DerivativeCheck check_derivatives(const Model& model, const Mesh& mesh, const Gu
 
 Mesh refine_at_control_jumps(const Solution& sol, int nodes_per_segment, double threshold) {
     if (sol.segments.empty()) throw InputError("hp refinement: the solution has no segments");
+    if (nodes_per_segment < 2) {
+        throw InputError("hp refinement: " + std::to_string(nodes_per_segment) +
+                         " nodes per segment, expected >= 2");
+    }
     const double t0 = sol.initial_time;
     const double dt = sol.final_time - sol.initial_time;
     if (!(dt > 0.0)) throw InputError("hp refinement: the solution has zero duration");
-    std::vector<double> fr;
-    for (std::size_t k = 1; k + 1 < sol.breaks.size(); ++k) fr.push_back((sol.breaks[k] - t0) / dt);
-    const int nu = sol.info.n_controls();
-    for (int j = 0; j < nu; ++j) {
-        double lo = sol.info.controls[j].lower;
-        double hi = sol.info.controls[j].upper;
-        if (!std::isfinite(lo) || !std::isfinite(hi)) {
-            lo = kInf;
-            hi = -kInf;
-            for (const auto& s : sol.segments) {
-                lo = std::min(lo, s.controls.col(j).minCoeff());
-                hi = std::max(hi, s.controls.col(j).maxCoeff());
-            }
-        }
-        const double range = hi - lo;
-        if (!(range > 0.0)) continue;
-        for (const auto& s : sol.segments) {
-            const Eigen::Index n = s.time.size();
-            Eigen::Index i = 0;
-            while (i + 1 < n) {
-                if (std::abs(s.controls(i + 1, j) - s.controls(i, j)) <= threshold * range) {
-                    ++i;
-                    continue;
-                }
-                // a run of large steps of one sign: one jump
-                Eigen::Index e = i + 1;
-                const double sign = s.controls(i + 1, j) - s.controls(i, j);
-                while (e + 1 < n && (s.controls(e + 1, j) - s.controls(e, j)) * sign > 0.0 &&
-                       std::abs(s.controls(e + 1, j) - s.controls(e, j)) > 0.05 * range) {
-                    ++e;
-                }
-                const double mid = 0.5 * (s.controls(i, j) + s.controls(e, j));
-                double tj = 0.5 * (s.time(i) + s.time(e));
-                for (Eigen::Index q = i; q < e; ++q) {
-                    const double a = s.controls(q, j) - mid;
-                    const double b = s.controls(q + 1, j) - mid;
-                    if (a * b <= 0.0 && a != b) {
-                        tj = s.time(q) + a / (a - b) * (s.time(q + 1) - s.time(q));
-                        break;
-                    }
-                }
-                fr.push_back((tj - t0) / dt);
-                i = e;
-            }
-        }
-    }
-    std::sort(fr.begin(), fr.end());
-    Mesh mesh;
-    mesh.breaks.push_back(0.0);
-    const double gap = 1e-3;
+    const int K = static_cast<int>(sol.segments.size());
+    const std::vector<double> fr = control_jumps(sol, threshold);
+    // existing breaks are kept; a new one within one node spacing of a kept one is dropped
+    std::vector<double> old(static_cast<std::size_t>(K) + 1);
+    for (int k = 0; k <= K; ++k) old[k] = (sol.breaks[k] - t0) / dt;
+    old.front() = 0.0;
+    old.back() = 1.0;
+    auto old_segment = [&](double f) {
+        int k = 0;
+        while (k + 1 < K && f >= old[k + 1]) ++k;
+        return k;
+    };
+    auto spacing_at = [&](double f) {
+        const int k = old_segment(f);
+        return (old[k + 1] - old[k]) / static_cast<double>(sol.segments[k].time.size() - 1);
+    };
+    std::vector<double> breaks = old;
     for (const double f : fr) {
-        if (f > mesh.breaks.back() + gap && f < 1.0 - gap) mesh.breaks.push_back(f);
+        const auto it = std::lower_bound(breaks.begin(), breaks.end(), f);
+        const double h = spacing_at(f);
+        const bool near_next = it != breaks.end() && *it - f < h;
+        const bool near_prev = it != breaks.begin() && f - *(it - 1) < h;
+        if (!near_next && !near_prev) breaks.insert(it, f);
     }
-    mesh.breaks.push_back(1.0);
-    mesh.nodes.assign(mesh.breaks.size() - 1, nodes_per_segment);
+    Mesh mesh;
+    mesh.breaks = breaks;
+    // Never coarser than the solution: each new segment has at least the points per unit time
+    // of every old segment it overlaps (so at least as many points in all), and at least
+    // nodes_per_segment.
+    for (std::size_t q = 0; q + 1 < breaks.size(); ++q) {
+        const double a = breaks[q], b = breaks[q + 1];
+        double density = 0.0;
+        for (int k = 0; k < K; ++k) {
+            if (old[k + 1] <= a || old[k] >= b) continue;
+            density = std::max(
+                density, static_cast<double>(sol.segments[k].time.size()) / (old[k + 1] - old[k]));
+        }
+        const int need = static_cast<int>(std::ceil(density * (b - a) - 1e-9));
+        mesh.nodes.push_back(std::max(nodes_per_segment, need));
+    }
     mesh.free_breaks = mesh.nodes.size() > 1;
-    mesh.min_segment_fraction = std::min(1e-3, 0.5 / static_cast<double>(mesh.nodes.size()));
+    double shortest = 1.0;
+    for (std::size_t q = 0; q + 1 < breaks.size(); ++q)
+        shortest = std::min(shortest, breaks[q + 1] - breaks[q]);
+    mesh.min_segment_fraction = std::min(1e-3, 0.5 * shortest);
     mesh.validate();
     return mesh;
 }

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "manta/optimal/problems.hpp"
 
@@ -78,6 +79,9 @@ TEST(OptimalValidation, DoubleIntegratorBangBangWithHpRefinement) {
     ASSERT_EQ(refined.n_segments(), 2);
     const Solution two = solve(*m, refined, Guess::from_solution(one));
     ASSERT_TRUE(two.converged()) << two.status_text;
+    std::printf("refined: %d + %d points, %d iterations, t_f error %.2e s, break error %.2e s\n",
+                refined.nodes[0], refined.nodes[1], two.iterations,
+                two.final_time - exact.final_time, two.breaks[1] - exact.switch_time);
     EXPECT_NEAR(two.final_time, exact.final_time, 1e-6);
     EXPECT_NEAR(two.breaks[1], exact.switch_time, 1e-6);
     EXPECT_LT((two.segments[0].controls.array() + 1.0).abs().maxCoeff(), 1e-6);

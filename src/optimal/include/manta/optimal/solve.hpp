@@ -264,8 +264,13 @@ struct DerivativeCheck {
 
 /// hp refinement at control discontinuities: from a converged solution, a mesh whose breaks sit
 /// where a control jumps by more than `threshold` times its range between neighbouring nodes
-/// (at the time the jump crosses its mid value), `nodes_per_segment` LGL points per segment,
-/// free breaks. Existing breaks are kept. Re-solve with Guess::from_solution(solution).
+/// (at the time the jump crosses its mid value), free breaks. Jumps closer than about one node
+/// spacing are merged (a run of them, as a chattering control on a singular arc gives, becomes
+/// one break, or two at its ends); a new break within one node spacing of an existing one is
+/// dropped. Existing breaks are kept. Never coarser than the solution: each segment gets at
+/// least `nodes_per_segment` points and at least the points per unit time of every segment of
+/// the solution it overlaps. Re-solve with Guess::from_solution(solution). Error-driven
+/// refinement: refine.hpp.
 [[nodiscard]] Mesh refine_at_control_jumps(const Solution& solution, int nodes_per_segment,
                                            double threshold = 0.25);
 
