@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -245,6 +246,12 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
     if (!(options_.hinge_blend_chords >= 0.0) || !(options_.edge_blend_chords >= 0.0))
         throw InputError("mesh motion: blend widths must be >= 0");
     if (options_.max_points < 1) throw InputError("mesh motion: max_points must be >= 1");
+    positive(options_.plane_tolerance, "plane_tolerance");
+    for (const auto& [v, what] : {std::pair{options_.rigid_radius, "rigid_radius"},
+                                  std::pair{options_.fixed_radius, "fixed_radius"}})
+        if (!(v >= 0.0 && std::isfinite(v)))
+            throw InputError(fmt::format(
+                "mesh motion: {} = {} m; expected a number >= 0 (0: the default)", what, v));
 
     const Index n = mesh.n_nodes();
     x0_.resize(3, n);
@@ -570,12 +577,21 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
         info_.push_back(std::move(info));
     }
 
-    // Cells the deformation can change: those with a moved node.
+    if (options_.body == BodyMotion::deforming) setup_body(mesh, moved);
+
+    // Cells the deformation can change: those with a moved node, and in the deforming mode those
+    // whose nodes do not all have the same blend (the others move rigidly or stay).
     for (Index c = 0; c < mesh.n_cells(); ++c) {
         const auto cn = mesh.cell(c);
-        if (std::none_of(cn.begin(), cn.end(),
-                         [&](Index v) { return moved[static_cast<std::size_t>(v)] != 0; }))
-            continue;
+        bool changes = std::any_of(
+            cn.begin(), cn.end(), [&](Index v) { return moved[static_cast<std::size_t>(v)] != 0; });
+        if (!changes && !blend_.empty()) {
+            const double b0 = blend_[static_cast<std::size_t>(cn[0])];
+            changes = std::any_of(cn.begin(), cn.end(), [&](Index v) {
+                return blend_[static_cast<std::size_t>(v)] != b0;
+            });
+        }
+        if (!changes) continue;
         const CellType t = mesh.cell_type(c);
         checked_type_.push_back(t);
         checked_cell_.push_back(c);
@@ -585,6 +601,215 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
                                  n_sub_tetrahedra(t));
     }
     setup_seconds_ = seconds_since(t_start);
+}
+
+void MeshMotion::setup_body(const mesh::Mesh& mesh, std::vector<char>& moved) {
+    const auto t_start = Clock::now();
+    const Index n = mesh.n_nodes();
+    const auto nn = static_cast<std::size_t>(n);
+    // Marker roles: 1 wall (moves with the body), 2 symmetry (slides), 0 fixed.
+    std::vector<int> role(static_cast<std::size_t>(mesh.n_markers()), 0);
+    std::string marker_list;
+    for (const std::string& m : mesh.markers())
+        marker_list += (marker_list.empty() ? "" : ", ") + m;
+    auto marker_id = [&](const std::string& name, const char* what) {
+        const int id = mesh.find_marker(name);
+        if (id < 0)
+            throw InputError(fmt::format(
+                "{}: {} marker '{}' of the deforming mesh motion is not a marker of the mesh; "
+                "expected one of {}",
+                mesh.source(), what, name, marker_list));
+        return static_cast<std::size_t>(id);
+    };
+    for (const std::string& m : options_.wall_markers) role[marker_id(m, "wall")] = 1;
+    for (const std::string& m : options_.symmetry_markers) {
+        const std::size_t id = marker_id(m, "symmetry");
+        if (role[id] == 1)
+            throw InputError(fmt::format(
+                "{}: marker '{}' is given as a wall and as a symmetry plane; expected one role",
+                mesh.source(), m));
+        role[id] = 2;
+    }
+    if (options_.wall_markers.empty())
+        throw InputError(fmt::format(
+            "{}: the deforming mesh motion has no wall marker to move (markers: {}); expected at "
+            "least one wall",
+            mesh.source(), marker_list));
+
+    // Each node's markers by role: a wall one, a fixed one, the symmetry planes (up to 3).
+    std::vector<int> wall_of(nn, -1), fixed_of(nn, -1), n_planes(nn, 0);
+    std::vector<std::array<int, 3>> planes_of(nn, {-1, -1, -1});
+    for (Index f = 0; f < mesh.n_faces(); ++f) {
+        const int m = mesh.face_marker(f);
+        const int r = role[static_cast<std::size_t>(m)];
+        for (const Index v : mesh.face(f)) {
+            const auto vv = static_cast<std::size_t>(v);
+            if (r == 1) {
+                wall_of[vv] = m;
+            } else if (r == 0) {
+                fixed_of[vv] = m;
+            } else {
+                auto& p = planes_of[vv];
+                if (std::find(p.begin(), p.end(), m) == p.end() && n_planes[vv] < 3)
+                    p[static_cast<std::size_t>(n_planes[vv]++)] = m;
+            }
+        }
+    }
+
+    // A plane fitted to each symmetry marker's nodes (normal: the covariance's eigenvector of
+    // least eigenvalue); a marker whose nodes are off it is not a plane.
+    std::vector<Vector3d> normal(role.size(), Vector3d::Zero());
+    for (std::size_t m = 0; m < role.size(); ++m) {
+        if (role[m] != 2) continue;
+        std::vector<Index> nodes;
+        for (Index v = 0; v < n; ++v) {
+            const auto& p = planes_of[static_cast<std::size_t>(v)];
+            if (std::find(p.begin(), p.end(), static_cast<int>(m)) != p.end()) nodes.push_back(v);
+        }
+        if (nodes.empty()) continue;
+        Vector3d c = Vector3d::Zero(), lo = Vector3d::Constant(1e300), hi = -lo;
+        for (const Index v : nodes) {
+            c += x0_.col(v);
+            lo = lo.cwiseMin(x0_.col(v));
+            hi = hi.cwiseMax(x0_.col(v));
+        }
+        c /= static_cast<double>(nodes.size());
+        Matrix3d cov = Matrix3d::Zero();
+        for (const Index v : nodes) cov += (x0_.col(v) - c) * (x0_.col(v) - c).transpose();
+        const Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+        const Vector3d nm = es.eigenvectors().col(0).normalized();
+        const double tol = options_.plane_tolerance * (hi - lo).norm();
+        Index worst = nodes.front();
+        double dmax = -1.0;
+        for (const Index v : nodes) {
+            const double d = std::abs(nm.dot(x0_.col(v) - c));
+            if (d > dmax) {
+                dmax = d;
+                worst = v;
+            }
+        }
+        if (!(dmax <= tol))
+            throw InputError(fmt::format(
+                "{}: symmetry marker '{}' is not plane: node {} {} is {:.6g} m from the plane "
+                "fitted to its {} nodes (normal {}); expected within {:.6g} m ({:g} of its extent)",
+                mesh.source(), mesh.markers()[m], worst, text(x0_.col(worst)), dmax, nodes.size(),
+                text(nm), tol, options_.plane_tolerance));
+        normal[m] = nm;
+    }
+
+    // The walls' box; a wall node on a fixed marker cannot both move and stay.
+    Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    int n_wall = 0, n_fixed = 0;
+    for (Index v = 0; v < n; ++v) {
+        const auto vv = static_cast<std::size_t>(v);
+        if (wall_of[vv] >= 0) {
+            if (fixed_of[vv] >= 0)
+                throw InputError(fmt::format(
+                    "{}: node {} {} lies on wall marker '{}' and on marker '{}', which the "
+                    "deforming mesh motion holds fixed; expected the moving walls apart from the "
+                    "fixed boundaries (or the rigid mesh motion)",
+                    mesh.source(), v, text(x0_.col(v)),
+                    mesh.markers()[static_cast<std::size_t>(wall_of[vv])],
+                    mesh.markers()[static_cast<std::size_t>(fixed_of[vv])]));
+            ++n_wall;
+            lo = lo.cwiseMin(x0_.col(v));
+            hi = hi.cwiseMax(x0_.col(v));
+        }
+    }
+    if (n_wall == 0)
+        throw InputError(
+            fmt::format("{}: the wall markers of the deforming mesh motion have no "
+                        "nodes; expected at least one wall face",
+                        mesh.source()));
+    double nearest_fixed = std::numeric_limits<double>::infinity();
+    Index nearest_node = -1;
+    for (Index v = 0; v < n; ++v)
+        if (fixed_of[static_cast<std::size_t>(v)] >= 0) {
+            ++n_fixed;
+            const double rho = box_distance(x0_.col(v), lo, hi);
+            if (rho < nearest_fixed) {
+                nearest_fixed = rho;
+                nearest_node = v;
+            }
+        }
+    const double r2 = options_.fixed_radius > 0.0 ? options_.fixed_radius : nearest_fixed;
+    if (nearest_node >= 0 && r2 > nearest_fixed * (1.0 + 1e-12))
+        throw InputError(fmt::format(
+            "{}: fixed_radius {:.6g} m reaches past the fixed boundary: node {} {} of marker '{}' "
+            "is {:.6g} m from the walls' box; expected at most {:.6g} m",
+            mesh.source(), r2, nearest_node, text(x0_.col(nearest_node)),
+            mesh.markers()[static_cast<std::size_t>(
+                fixed_of[static_cast<std::size_t>(nearest_node)])],
+            nearest_fixed, nearest_fixed));
+    const double r1 =
+        options_.rigid_radius > 0.0 ? options_.rigid_radius : std::min((hi - lo).norm(), 0.25 * r2);
+    if (!(r1 < r2))
+        throw InputError(
+            fmt::format("{}: rigid_radius {:.6g} m; expected less than fixed_radius {:.6g} m",
+                        mesh.source(), r1, r2));
+
+    // Blend: 1 within r1 of the walls' box, 0 from r2 on, 1 - S((rho - r1) / (r2 - r1)) between.
+    blend_.assign(nn, 0.0);
+    BodyMotionInfo& info = body_info_;
+    for (Index v = 0; v < n; ++v) {
+        const auto vv = static_cast<std::size_t>(v);
+        double b = 0.0;
+        if (wall_of[vv] >= 0) {
+            b = 1.0;
+        } else if (fixed_of[vv] < 0) {
+            const double rho = box_distance(x0_.col(v), lo, hi);
+            b = std::isfinite(r2) ? 1.0 - smoothstep((rho - r1) / (r2 - r1)) : 1.0;
+        }
+        blend_[vv] = b;
+        if (b > 0.0 && b < 1.0) {
+            ++info.n_blended_nodes;
+            moved[vv] = 1;
+        }
+        if (b == 0.0 || n_planes[vv] == 0) continue;
+        // Sliding: the displacement projected onto the plane, or onto the line of two planes.
+        Matrix3d P = Matrix3d::Zero();
+        const auto& pl = planes_of[vv];
+        if (n_planes[vv] == 1) {
+            const Vector3d& m = normal[static_cast<std::size_t>(pl[0])];
+            P = Matrix3d::Identity() - m * m.transpose();
+        } else if (n_planes[vv] == 2) {
+            const Vector3d e = normal[static_cast<std::size_t>(pl[0])].cross(
+                normal[static_cast<std::size_t>(pl[1])]);
+            if (e.norm() > 1e-6) P = e.normalized() * e.normalized().transpose();
+        }
+        slide_node_.push_back(v);
+        slide_projection_.push_back(P);
+        moved[vv] = 1;
+    }
+    info.n_wall_nodes = n_wall;
+    info.n_sliding_nodes = static_cast<int>(slide_node_.size());
+    info.n_fixed_nodes = n_fixed;
+    info.rigid_radius = r1;
+    info.fixed_radius = r2;
+    info.setup_seconds = seconds_since(t_start);
+}
+
+void MeshMotion::blend_body(const RigidPose& p, Matrix3Xd& y) const {
+    std::size_t k = 0;
+    const Matrix3d A = p.rotation - Matrix3d::Identity();
+    for (Eigen::Index i = 0; i < y.cols(); ++i) {
+        const double b = blend_[static_cast<std::size_t>(i)];
+        if (b == 0.0) continue;
+        Vector3d d = p.translation + A * y.col(i);
+        if (k < slide_node_.size() && slide_node_[k] == i) d = slide_projection_[k++] * d;
+        y.col(i) += b * d;
+    }
+}
+
+void MeshMotion::checked_coordinates(const aero::MotionState& s, double scale, Matrix3Xd& y) const {
+    deform(s, scale, y);
+    if (options_.body != BodyMotion::deforming) return;
+    aero::MotionState scaled = s;
+    for (int k = 0; k < 3; ++k) {
+        scaled.position[static_cast<std::size_t>(k)] *= scale;
+        scaled.euler[static_cast<std::size_t>(k)] *= scale;
+    }
+    blend_body(rigid_pose(scaled, placement_.reference_point), y);
 }
 
 void MeshMotion::deform(const aero::MotionState& s, double scale, Matrix3Xd& y) const {
@@ -635,15 +860,21 @@ void MeshMotion::check(const aero::MotionState& s, const Matrix3Xd& y, long step
     Matrix3Xd trial;
     for (int it = 0; it < 30; ++it) {
         const double mid = 0.5 * (lo + hi);
-        deform(s, mid, trial);
+        checked_coordinates(s, mid, trial);
         (first_bad_cell(trial) < 0 ? lo : hi) = mid;
     }
     const auto k = static_cast<std::size_t>(bad);
     Index node = checked_nodes_[static_cast<std::size_t>(checked_offsets_[k])];
     double dmax = -1.0;
+    // The displacement that shapes the cell: from the reference mesh (rigid mode), or from the
+    // rigidly moved reference mesh (deforming mode, whose check sees the moved mesh).
+    const RigidPose pose = rigid_pose(s, placement_.reference_point);
+    const bool body = options_.body == BodyMotion::deforming;
     for (auto i = checked_offsets_[k]; i < checked_offsets_[k + 1]; ++i) {
         const Index v = checked_nodes_[static_cast<std::size_t>(i)];
-        const double d = (y.col(v) - x0_.col(v)).norm();
+        const Vector3d ref =
+            body ? Vector3d(pose.translation + pose.rotation * x0_.col(v)) : Vector3d(x0_.col(v));
+        const double d = (y.col(v) - ref).norm();
         if (d > dmax) {
             dmax = d;
             node = v;
@@ -661,6 +892,26 @@ void MeshMotion::check(const aero::MotionState& s, const Matrix3Xd& y, long step
         valid += fmt::format("{}{} {:.4g} deg", valid.empty() ? "" : ", ", name,
                              lo * v * 180.0 / std::numbers::pi);
     }
+    if (body) {
+        const double r = std::sqrt(s.position[0] * s.position[0] + s.position[1] * s.position[1] +
+                                   s.position[2] * s.position[2]);
+        auto pose_text = [&](double f) {
+            return fmt::format(
+                "phi {:.4g} deg, theta {:.4g} deg, psi {:.4g} deg, reference point "
+                "displaced {:.4g} m",
+                f * s.euler[0] * 180.0 / std::numbers::pi,
+                f * s.euler[1] * 180.0 / std::numbers::pi,
+                f * s.euler[2] * 180.0 / std::numbers::pi, f * r);
+        };
+        throw InputError(fmt::format(
+            "{}{}: t = {:.9g} s: cell {} ({}) folds at node {} {} in the deforming mesh motion "
+            "with {}{}{}; the largest fraction of the motion that keeps every cell valid is "
+            "{:.4f} of it ({}{}{}); expected a smaller motion, or a larger fixed_radius",
+            placement_.motion_source, step >= 0 ? fmt::format(", step {}", step) : std::string(),
+            s.t, checked_cell_[k], mesh::name(checked_type_[k]), node, text(x0_.col(node)),
+            pose_text(1.0), now.empty() ? "" : ", ", now, lo, pose_text(lo),
+            valid.empty() ? "" : ", ", valid));
+    }
     throw InputError(fmt::format(
         "{}{}: t = {:.9g} s: cell {} ({}) folds at node {} {} with {}; the largest deflection "
         "that keeps every cell valid is {:.4f} of it ({})",
@@ -671,8 +922,9 @@ void MeshMotion::check(const aero::MotionState& s, const Matrix3Xd& y, long step
 void MeshMotion::coordinates_at(double t, Matrix3Xd& out, long step) const {
     const aero::MotionState s = motion_.at(t);
     if (out.cols() != x0_.cols()) out.resize(3, x0_.cols());
-    deform(s, 1.0, out);
+    checked_coordinates(s, 1.0, out);
     check(s, out, step);
+    if (options_.body == BodyMotion::deforming) return;
     const RigidPose p = rigid_pose(s, placement_.reference_point);
     for (Eigen::Index i = 0; i < out.cols(); ++i) {
         const Vector3d y = out.col(i);
@@ -685,7 +937,13 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
     if (x.cols() != x0_.cols()) x.resize(3, x0_.cols());
     if (v.cols() != x0_.cols()) v.resize(3, x0_.cols());
     deform(s, 1.0, x);
-    check(s, x, step);
+    if (options_.body == BodyMotion::deforming) {
+        Matrix3Xd moved;
+        checked_coordinates(s, 1.0, moved);
+        check(s, moved, step);
+    } else {
+        check(s, x, step);
+    }
     v.setZero();
     for (const Field& f : fields_) {
         const double delta = f.gain * s.modes[static_cast<std::size_t>(f.mode)];
@@ -698,6 +956,27 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
         }
     }
     const RigidPose p = rigid_pose(s, placement_.reference_point);
+    if (options_.body == BodyMotion::deforming) {
+        // x = y + b P (t + R y - y): v = ydot + b P (v_rigid - ydot), v_rigid the velocity of
+        // the rigidly moved point t + R y.
+        std::size_t k = 0;
+        for (Eigen::Index i = 0; i < x.cols(); ++i) {
+            const double b = blend_[static_cast<std::size_t>(i)];
+            if (b == 0.0) continue;
+            const Vector3d y = x.col(i), ydot = v.col(i);
+            const Vector3d xr = p.translation + p.rotation * y;
+            Vector3d d = xr - y;
+            Vector3d dv = p.velocity + p.omega.cross(xr - p.reference) + p.rotation * ydot - ydot;
+            if (k < slide_node_.size() && slide_node_[k] == i) {
+                d = slide_projection_[k] * d;
+                dv = slide_projection_[k] * dv;
+                ++k;
+            }
+            x.col(i) = y + b * d;
+            v.col(i) = ydot + b * dv;
+        }
+        return;
+    }
     for (Eigen::Index i = 0; i < x.cols(); ++i) {
         const Vector3d y = x.col(i), ydot = v.col(i);
         const Vector3d xi = p.translation + p.rotation * y;
@@ -707,11 +986,11 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
 }
 
 void MeshMotion::check_motion() const {
-    if (fields_.empty()) return;
+    if (fields_.empty() && options_.body != BodyMotion::deforming) return;
     Matrix3Xd y;
     for (std::size_t i = 0; i < motion_.n_samples(); ++i) {
         const aero::MotionState s = motion_.at(motion_.t[i]);
-        deform(s, 1.0, y);
+        checked_coordinates(s, 1.0, y);
         check(s, y, -1);
     }
 }

@@ -52,8 +52,31 @@ struct ControlSurfaceSpec {
     std::string source = "control surface";  ///< where it was defined ("cfd.yaml:12"), for messages
 };
 
+/// How the rigid part of the motion reaches the mesh.
+enum class BodyMotion {
+    rigid,      ///< every node moves with the body (the far field too)
+    deforming,  ///< the walls move with the body, the far field stays, the volume blends between
+};
+
 /// Settings of the volume deformation and of its checks.
 struct DeformationOptions {
+    /// Rigid (default) or deforming body motion (docs/mesh-motion.md, "Deforming body motion").
+    BodyMotion body = BodyMotion::rigid;
+    /// Markers that move with the body in the deforming mode (the walls). Every marker named in
+    /// neither list is held fixed there (the far field).
+    std::vector<std::string> wall_markers;
+    /// Plane markers: in the deforming mode, and for control surfaces that touch them, their nodes
+    /// slide in the plane (displacement projected onto it). Each is checked to be plane at set-up.
+    std::vector<std::string> symmetry_markers;
+    /// Deforming mode: nodes within this distance [m] of the walls' bounding box move rigidly
+    /// (0: the default, min(box diagonal, fixed_radius / 4)).
+    double rigid_radius = 0.0;
+    /// Deforming mode: nodes at this distance [m] or more from the walls' bounding box do not move
+    /// (0: the default, the distance of the nearest fixed boundary node).
+    double fixed_radius = 0.0;
+    /// A symmetry marker's nodes must lie within this fraction of the diagonal of its bounding
+    /// box from the plane fitted to them.
+    double plane_tolerance = 1e-6;
     /// The greedy reduction stops when the interpolation of every candidate surface node is
     /// within this fraction of its shortest edge, for both fields of the surface.
     double surface_tolerance = 0.1;
@@ -109,6 +132,16 @@ struct ControlSurfaceInfo {
     double setup_seconds = 0.0;  ///< wall time of this surface's set-up
 };
 
+/// What the set-up of the deforming body motion found (for reports and tests).
+struct BodyMotionInfo {
+    int n_wall_nodes = 0;     ///< nodes of the wall markers (moving rigidly)
+    int n_sliding_nodes = 0;  ///< nodes on a symmetry marker that move (projected on the plane)
+    int n_fixed_nodes = 0;    ///< boundary nodes held fixed (far field)
+    int n_blended_nodes = 0;  ///< nodes between the two radii (0 < blend < 1)
+    double rigid_radius = 0.0, fixed_radius = 0.0;  ///< [m]
+    double setup_seconds = 0.0;
+};
+
 /// Node coordinates of the moving, deforming mesh along a motion.
 ///
 /// Set-up (constructor): for each control surface, its marker's nodes, the two surface fields
@@ -128,6 +161,9 @@ public:
     [[nodiscard]] mesh::Index n_nodes() const { return static_cast<mesh::Index>(x0_.cols()); }
     [[nodiscard]] const aero::Motion& motion() const { return motion_; }
     [[nodiscard]] const std::vector<ControlSurfaceInfo>& info() const { return info_; }
+    [[nodiscard]] BodyMotion body_motion() const { return options_.body; }
+    /// The deforming body motion's set-up (zeros in the rigid mode).
+    [[nodiscard]] const BodyMotionInfo& body_info() const { return body_info_; }
     /// Wall time of the whole set-up [s].
     [[nodiscard]] double setup_seconds() const { return setup_seconds_; }
     /// Number of cells checked each step (those with a node that a control surface moves).
@@ -159,6 +195,11 @@ private:
         Eigen::Matrix3Xd m1, m2;         // their displacement fields per unit sin / (1 - cos)
     };
     void deform(const aero::MotionState& s, double scale, Eigen::Matrix3Xd& y) const;
+    /// The deforming mode's body motion of the deformed coordinates y, in place.
+    void blend_body(const RigidPose& p, Eigen::Matrix3Xd& y) const;
+    /// The coordinates the check looks at: the deformed mesh (rigid mode) or the moved one.
+    void checked_coordinates(const aero::MotionState& s, double scale, Eigen::Matrix3Xd& y) const;
+    void setup_body(const mesh::Mesh& mesh, std::vector<char>& moved);
     [[nodiscard]] long first_bad_cell(const Eigen::Matrix3Xd& y) const;
     void check(const aero::MotionState& s, const Eigen::Matrix3Xd& y, long step) const;
 
@@ -170,6 +211,12 @@ private:
     std::vector<Field> fields_;
     std::vector<ControlSurfaceInfo> info_;
     double setup_seconds_ = 0.0;
+    // Deforming body motion: the blend of each node (1 rigid, 0 fixed) and the projections of
+    // the sliding nodes onto their planes.
+    BodyMotionInfo body_info_;
+    std::vector<double> blend_;
+    std::vector<mesh::Index> slide_node_;
+    std::vector<Eigen::Matrix3d> slide_projection_;
     // Cells checked each step: type, nodes (CSR) and the volume floor of a sub-tetrahedron.
     std::vector<mesh::CellType> checked_type_;
     std::vector<mesh::Index> checked_cell_;
