@@ -852,6 +852,7 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
             j["mesh_motion"]["sliding_nodes"] = b.n_sliding_nodes;
             j["mesh_motion"]["blended_nodes"] = b.n_blended_nodes;
             j["mesh_motion"]["checked_cells"] = mesh_motion->n_checked_cells();
+            j["mesh_motion"]["memory_bytes"] = mesh_motion->memory_bytes();
         }
     }
     j["wall_time_s"] = seconds_since(t_start);

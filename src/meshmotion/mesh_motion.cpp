@@ -985,6 +985,19 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
     }
 }
 
+std::size_t MeshMotion::memory_bytes() const {
+    std::size_t b = sizeof(double) * static_cast<std::size_t>(x0_.size());
+    for (const Field& f : fields_)
+        b += sizeof(Index) * f.nodes.size() +
+             sizeof(double) * static_cast<std::size_t>(f.m1.size() + f.m2.size());
+    b += sizeof(double) * blend_.size() + sizeof(Index) * slide_node_.size() +
+         sizeof(Eigen::Matrix3d) * slide_projection_.size();
+    b += sizeof(CellType) * checked_type_.size() + sizeof(Index) * checked_cell_.size() +
+         sizeof(std::int64_t) * checked_offsets_.size() + sizeof(Index) * checked_nodes_.size() +
+         sizeof(double) * checked_floor_.size();
+    return b;
+}
+
 void MeshMotion::check_motion() const {
     if (fields_.empty() && options_.body != BodyMotion::deforming) return;
     Matrix3Xd y;

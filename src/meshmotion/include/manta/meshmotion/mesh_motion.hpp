@@ -164,6 +164,9 @@ public:
     [[nodiscard]] BodyMotion body_motion() const { return options_.body; }
     /// The deforming body motion's set-up (zeros in the rigid mode).
     [[nodiscard]] const BodyMotionInfo& body_info() const { return body_info_; }
+    /// Bytes held by this object's arrays (reference coordinates, mode fields, blend, sliding
+    /// projections, the checked cells).
+    [[nodiscard]] std::size_t memory_bytes() const;
     /// Wall time of the whole set-up [s].
     [[nodiscard]] double setup_seconds() const { return setup_seconds_; }
     /// Number of cells checked each step (those with a node that a control surface moves).
