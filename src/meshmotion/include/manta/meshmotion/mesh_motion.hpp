@@ -2,8 +2,10 @@
 /// @file mesh_motion.hpp
 /// `MeshMotion`: the node coordinates (and velocities) of a volume mesh that moves rigidly along
 /// an `aero::Motion` and whose control surfaces deflect as mode shapes spread into the volume by
-/// inverse-distance weighting (docs/mesh-motion.md, docs/adr/0003-moving-meshes.md items 1, 6, 7).
-/// Knows nothing of any flow solver: it turns a time into coordinates.
+/// inverse-distance weighting (docs/mesh-motion.md, docs/adr/0003-moving-meshes.md items 1, 6, 7);
+/// or, in the deforming body motion (item 8), whose walls move rigidly while the far field stays,
+/// the volume blends between them and symmetry planes slide. Knows nothing of any flow solver: it
+/// turns a time into coordinates.
 ///
 /// Frames. The mesh is given in mesh axes, which are geometry axes (x aft / downstream, y right,
 /// z up; docs/conventions.md, docs/euler.md). The moving mesh is written in the *flow frame*: the
@@ -149,12 +151,16 @@ struct BodyMotionInfo {
 /// w the blend weight, 0 on the nodes shared with other markers), and their volume fields by
 /// inverse-distance weighting from a greedily reduced point set. Per step: the exact rotation
 /// by delta, sin(delta) m1 + (1 - cos(delta)) m2, for each surface, a check of the cells near the
-/// moving surfaces, then the rigid motion of every node.
+/// moving surfaces, then the rigid motion of every node. Deforming body motion: the deflected
+/// node y goes to y + b P (T + R y - y) (b its blend, 1 on the walls, 0 on the far field; P the
+/// projection onto its symmetry plane, identity elsewhere), and the check sees these coordinates.
 class MeshMotion {
 public:
     /// InputError (one line) for a marker that is not in the mesh, a hinge line off its surface,
     /// a control surface whose mode the motion lacks, a mode that deflects with no control surface,
-    /// and for an invalid motion (aero::Motion::validate). The mesh must be finalized.
+    /// and for an invalid motion (aero::Motion::validate); in the deforming body motion also for a
+    /// symmetry marker that is not plane, a wall node on a fixed marker and radii that do not fit
+    /// (docs/mesh-motion.md). The mesh must be finalized.
     MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacement placement,
                std::vector<ControlSurfaceSpec> surfaces, const DeformationOptions& options = {});
 
