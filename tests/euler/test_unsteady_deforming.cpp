@@ -12,6 +12,7 @@
 #include <span>
 
 #include "manta/aero/motion.hpp"
+#include "manta/core/error.hpp"
 #include "manta/euler/config.hpp"
 #include "manta/euler/unsteady.hpp"
 #include "manta/mesh/dual.hpp"
@@ -107,6 +108,27 @@ TEST(UnsteadyDeforming, FreeStreamStaysUniformOnADeformingSlab) {
         EXPECT_GT(volume_change, 1e-5);  // the volume deforms
         EXPECT_LT(gcl, 1e-13);
         EXPECT_LT(deviation, 1e-12);
+    }
+}
+
+TEST(UnsteadyDeforming, ConfigurationKeys) {
+    const euler::CfdConfig c = euler::parse_cfd_config(
+        "unsteady: {mesh_motion: deforming, rigid_radius: 1.5, fixed_radius: 15}\n", "cfd.yaml");
+    EXPECT_EQ(c.mesh_motion, meshmotion::BodyMotion::deforming);
+    EXPECT_EQ(c.rigid_radius, 1.5);
+    EXPECT_EQ(c.fixed_radius, 15.0);
+    EXPECT_EQ(euler::parse_cfd_config("unsteady: {order: 2}\n", "cfd.yaml").mesh_motion,
+              meshmotion::BodyMotion::rigid);
+    for (const char* bad : {"unsteady: {mesh_motion: elastic}\n", "unsteady: {rigid_radius: -1}\n",
+                            "unsteady: {fixed_radius: .nan}\n"}) {
+        try {
+            (void)euler::parse_cfd_config(bad, "cfd.yaml");
+            ADD_FAILURE() << bad;
+        } catch (const ConfigError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find("cfd.yaml"), std::string::npos) << m;
+            EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
     }
 }
 
