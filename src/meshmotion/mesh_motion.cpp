@@ -133,12 +133,16 @@ struct Boundary {
     std::vector<double> h;         // shortest distance to a node sharing a cell [m]
 };
 
-Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x) {
+/// The nodes' markers, symmetry planes left out (`symmetry[m]` != 0): a node only on symmetry
+/// planes counts as interior (it slides, docs/mesh-motion.md).
+Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x,
+                     const std::vector<char>& symmetry) {
     const auto n = static_cast<std::size_t>(mesh.n_nodes());
     Boundary b;
     b.node_marker.assign(n, -1);
     for (Index f = 0; f < mesh.n_faces(); ++f) {
         const int m = mesh.face_marker(f);
+        if (symmetry[static_cast<std::size_t>(m)]) continue;
         for (const Index v : mesh.face(f)) {
             int& nm = b.node_marker[static_cast<std::size_t>(v)];
             if (nm == -1)
@@ -161,6 +165,108 @@ Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x) {
         }
     }
     return b;
+}
+
+}  // namespace
+
+/// The symmetry markers' planes and each node's projection onto them.
+struct SymmetryPlanes {
+    std::vector<char> is_symmetry;           // per marker
+    std::vector<Vector3d> normal;            // per marker (symmetry ones)
+    std::vector<int> count;                  // per node: symmetry planes it lies on (<= 3)
+    std::vector<std::array<int, 3>> planes;  // their markers
+    /// Projection of a displacement of node v: onto its plane, onto the line of two, or zero.
+    [[nodiscard]] Matrix3d projection(Index v) const {
+        const auto vv = static_cast<std::size_t>(v);
+        const auto& pl = planes[vv];
+        if (count[vv] == 1) {
+            const Vector3d& m = normal[static_cast<std::size_t>(pl[0])];
+            return Matrix3d::Identity() - m * m.transpose();
+        }
+        if (count[vv] == 2) {
+            const Vector3d e = normal[static_cast<std::size_t>(pl[0])].cross(
+                normal[static_cast<std::size_t>(pl[1])]);
+            if (e.norm() > 1e-6) return e.normalized() * e.normalized().transpose();
+        }
+        return Matrix3d::Zero();
+    }
+};
+
+namespace {
+
+/// Each symmetry marker named in `names` (InputError for one the mesh lacks), its nodes, and a
+/// plane fitted to them (normal: the covariance's eigenvector of least eigenvalue); InputError
+/// when a node is farther than `tolerance` times the diagonal of the marker's box from it.
+SymmetryPlanes symmetry_planes(const mesh::Mesh& mesh, const Matrix3Xd& x0,
+                               const std::vector<std::string>& names, double tolerance) {
+    SymmetryPlanes sp;
+    const auto nm = static_cast<std::size_t>(mesh.n_markers());
+    const auto nn = static_cast<std::size_t>(mesh.n_nodes());
+    sp.is_symmetry.assign(nm, 0);
+    sp.normal.assign(nm, Vector3d::Zero());
+    sp.count.assign(nn, 0);
+    sp.planes.assign(nn, {-1, -1, -1});
+    std::string marker_list;
+    for (const std::string& m : mesh.markers())
+        marker_list += (marker_list.empty() ? "" : ", ") + m;
+    for (const std::string& name : names) {
+        const int id = mesh.find_marker(name);
+        if (id < 0)
+            throw InputError(fmt::format(
+                "{}: symmetry marker '{}' of the mesh motion is not a marker of the mesh; expected "
+                "one of {}",
+                mesh.source(), name, marker_list));
+        sp.is_symmetry[static_cast<std::size_t>(id)] = 1;
+    }
+    for (Index f = 0; f < mesh.n_faces(); ++f) {
+        const int m = mesh.face_marker(f);
+        if (!sp.is_symmetry[static_cast<std::size_t>(m)]) continue;
+        for (const Index v : mesh.face(f)) {
+            const auto vv = static_cast<std::size_t>(v);
+            auto& p = sp.planes[vv];
+            if (std::find(p.begin(), p.end(), m) == p.end() && sp.count[vv] < 3)
+                p[static_cast<std::size_t>(sp.count[vv]++)] = m;
+        }
+    }
+    for (std::size_t m = 0; m < nm; ++m) {
+        if (!sp.is_symmetry[m]) continue;
+        std::vector<Index> nodes;
+        for (std::size_t v = 0; v < nn; ++v) {
+            const auto& p = sp.planes[v];
+            if (std::find(p.begin(), p.end(), static_cast<int>(m)) != p.end())
+                nodes.push_back(static_cast<Index>(v));
+        }
+        if (nodes.empty()) continue;
+        Vector3d c = Vector3d::Zero(), lo = Vector3d::Constant(1e300), hi = -lo;
+        for (const Index v : nodes) {
+            c += x0.col(v);
+            lo = lo.cwiseMin(x0.col(v));
+            hi = hi.cwiseMax(x0.col(v));
+        }
+        c /= static_cast<double>(nodes.size());
+        Matrix3d cov = Matrix3d::Zero();
+        for (const Index v : nodes) cov += (x0.col(v) - c) * (x0.col(v) - c).transpose();
+        const Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+        const Vector3d n = es.eigenvectors().col(0).normalized();
+        const double tol = tolerance * (hi - lo).norm();
+        Index worst = nodes.front();
+        double dmax = -1.0;
+        for (const Index v : nodes) {
+            const double d = std::abs(n.dot(x0.col(v) - c));
+            if (d > dmax) {
+                dmax = d;
+                worst = v;
+            }
+        }
+        if (!(dmax <= tol))
+            throw InputError(fmt::format(
+                "{}: symmetry marker '{}' is not plane: node {} {} is {:.6g} m from the plane "
+                "fitted to its {} nodes (normal {}); expected within {:.6g} m ({:g} of its extent)",
+                mesh.source(), mesh.markers()[m], worst, text(x0.col(worst)), dmax, nodes.size(),
+                text(n), tol, tolerance));
+        sp.normal[m] = n;
+    }
+    return sp;
 }
 
 /// Surface points carrying the two fields of one control surface and their gradients, for the
@@ -313,7 +419,11 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
         }
     }
 
-    const Boundary boundary = boundary_of(mesh, x0_);
+    // Symmetry planes: checked when something slides on them (the deforming body motion, or a
+    // control surface that touches one).
+    const SymmetryPlanes planes =
+        symmetry_planes(mesh, x0_, options_.symmetry_markers, options_.plane_tolerance);
+    const Boundary boundary = boundary_of(mesh, x0_, planes.is_symmetry);
     std::vector<char> moved(static_cast<std::size_t>(n), 0);
     for (const ControlSurfaceSpec& c : specs_) {
         const auto t_surface = Clock::now();
@@ -559,6 +669,11 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
                 v1 *= f;
                 v2 *= f;
             }
+            if (planes.count[static_cast<std::size_t>(v)] > 0) {
+                const Matrix3d P = planes.projection(v);
+                v1 = P * v1;
+                v2 = P * v2;
+            }
             field.nodes.push_back(v);
             f1.push_back(v1);
             f2.push_back(v2);
@@ -577,7 +692,7 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
         info_.push_back(std::move(info));
     }
 
-    if (options_.body == BodyMotion::deforming) setup_body(mesh, moved);
+    if (options_.body == BodyMotion::deforming) setup_body(mesh, planes, moved);
 
     // Cells the deformation can change: those with a moved node, and in the deforming mode those
     // whose nodes do not all have the same blend (the others move rigidly or stay).
@@ -603,7 +718,8 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
     setup_seconds_ = seconds_since(t_start);
 }
 
-void MeshMotion::setup_body(const mesh::Mesh& mesh, std::vector<char>& moved) {
+void MeshMotion::setup_body(const mesh::Mesh& mesh, const SymmetryPlanes& planes,
+                            std::vector<char>& moved) {
     const auto t_start = Clock::now();
     const Index n = mesh.n_nodes();
     const auto nn = static_cast<std::size_t>(n);
@@ -612,89 +728,39 @@ void MeshMotion::setup_body(const mesh::Mesh& mesh, std::vector<char>& moved) {
     std::string marker_list;
     for (const std::string& m : mesh.markers())
         marker_list += (marker_list.empty() ? "" : ", ") + m;
-    auto marker_id = [&](const std::string& name, const char* what) {
-        const int id = mesh.find_marker(name);
+    for (const std::string& m : options_.wall_markers) {
+        const int id = mesh.find_marker(m);
         if (id < 0)
             throw InputError(fmt::format(
-                "{}: {} marker '{}' of the deforming mesh motion is not a marker of the mesh; "
+                "{}: wall marker '{}' of the deforming mesh motion is not a marker of the mesh; "
                 "expected one of {}",
-                mesh.source(), what, name, marker_list));
-        return static_cast<std::size_t>(id);
-    };
-    for (const std::string& m : options_.wall_markers) role[marker_id(m, "wall")] = 1;
-    for (const std::string& m : options_.symmetry_markers) {
-        const std::size_t id = marker_id(m, "symmetry");
-        if (role[id] == 1)
+                mesh.source(), m, marker_list));
+        if (planes.is_symmetry[static_cast<std::size_t>(id)])
             throw InputError(fmt::format(
                 "{}: marker '{}' is given as a wall and as a symmetry plane; expected one role",
                 mesh.source(), m));
-        role[id] = 2;
+        role[static_cast<std::size_t>(id)] = 1;
     }
+    for (std::size_t m = 0; m < role.size(); ++m)
+        if (planes.is_symmetry[m]) role[m] = 2;
     if (options_.wall_markers.empty())
         throw InputError(fmt::format(
             "{}: the deforming mesh motion has no wall marker to move (markers: {}); expected at "
             "least one wall",
             mesh.source(), marker_list));
 
-    // Each node's markers by role: a wall one, a fixed one, the symmetry planes (up to 3).
-    std::vector<int> wall_of(nn, -1), fixed_of(nn, -1), n_planes(nn, 0);
-    std::vector<std::array<int, 3>> planes_of(nn, {-1, -1, -1});
+    // Each node's markers by role: a wall one, a fixed one.
+    std::vector<int> wall_of(nn, -1), fixed_of(nn, -1);
     for (Index f = 0; f < mesh.n_faces(); ++f) {
         const int m = mesh.face_marker(f);
         const int r = role[static_cast<std::size_t>(m)];
         for (const Index v : mesh.face(f)) {
             const auto vv = static_cast<std::size_t>(v);
-            if (r == 1) {
+            if (r == 1)
                 wall_of[vv] = m;
-            } else if (r == 0) {
+            else if (r == 0)
                 fixed_of[vv] = m;
-            } else {
-                auto& p = planes_of[vv];
-                if (std::find(p.begin(), p.end(), m) == p.end() && n_planes[vv] < 3)
-                    p[static_cast<std::size_t>(n_planes[vv]++)] = m;
-            }
         }
-    }
-
-    // A plane fitted to each symmetry marker's nodes (normal: the covariance's eigenvector of
-    // least eigenvalue); a marker whose nodes are off it is not a plane.
-    std::vector<Vector3d> normal(role.size(), Vector3d::Zero());
-    for (std::size_t m = 0; m < role.size(); ++m) {
-        if (role[m] != 2) continue;
-        std::vector<Index> nodes;
-        for (Index v = 0; v < n; ++v) {
-            const auto& p = planes_of[static_cast<std::size_t>(v)];
-            if (std::find(p.begin(), p.end(), static_cast<int>(m)) != p.end()) nodes.push_back(v);
-        }
-        if (nodes.empty()) continue;
-        Vector3d c = Vector3d::Zero(), lo = Vector3d::Constant(1e300), hi = -lo;
-        for (const Index v : nodes) {
-            c += x0_.col(v);
-            lo = lo.cwiseMin(x0_.col(v));
-            hi = hi.cwiseMax(x0_.col(v));
-        }
-        c /= static_cast<double>(nodes.size());
-        Matrix3d cov = Matrix3d::Zero();
-        for (const Index v : nodes) cov += (x0_.col(v) - c) * (x0_.col(v) - c).transpose();
-        const Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
-        const Vector3d nm = es.eigenvectors().col(0).normalized();
-        const double tol = options_.plane_tolerance * (hi - lo).norm();
-        Index worst = nodes.front();
-        double dmax = -1.0;
-        for (const Index v : nodes) {
-            const double d = std::abs(nm.dot(x0_.col(v) - c));
-            if (d > dmax) {
-                dmax = d;
-                worst = v;
-            }
-        }
-        if (!(dmax <= tol))
-            throw InputError(fmt::format(
-                "{}: symmetry marker '{}' is not plane: node {} {} is {:.6g} m from the plane "
-                "fitted to its {} nodes (normal {}); expected within {:.6g} m ({:g} of its extent)",
-                mesh.source(), mesh.markers()[m], worst, text(x0_.col(worst)), dmax, nodes.size(),
-                text(nm), tol, options_.plane_tolerance));
-        normal[m] = nm;
     }
 
     // The walls' box; a wall node on a fixed marker cannot both move and stay.
@@ -765,20 +831,10 @@ void MeshMotion::setup_body(const mesh::Mesh& mesh, std::vector<char>& moved) {
             ++info.n_blended_nodes;
             moved[vv] = 1;
         }
-        if (b == 0.0 || n_planes[vv] == 0) continue;
+        if (b == 0.0 || planes.count[vv] == 0) continue;
         // Sliding: the displacement projected onto the plane, or onto the line of two planes.
-        Matrix3d P = Matrix3d::Zero();
-        const auto& pl = planes_of[vv];
-        if (n_planes[vv] == 1) {
-            const Vector3d& m = normal[static_cast<std::size_t>(pl[0])];
-            P = Matrix3d::Identity() - m * m.transpose();
-        } else if (n_planes[vv] == 2) {
-            const Vector3d e = normal[static_cast<std::size_t>(pl[0])].cross(
-                normal[static_cast<std::size_t>(pl[1])]);
-            if (e.norm() > 1e-6) P = e.normalized() * e.normalized().transpose();
-        }
         slide_node_.push_back(v);
-        slide_projection_.push_back(P);
+        slide_projection_.push_back(planes.projection(v));
         moved[vv] = 1;
     }
     info.n_wall_nodes = n_wall;

@@ -5,11 +5,12 @@
 /// enough that no cell folds at 10 deg of pitch, the node velocities are the time derivative of
 /// the coordinates, the control-surface modes ride on top, and the one-line errors (a symmetry
 /// marker that is not plane, a wall that touches the far field, radii that do not fit, a motion
-/// that folds cells).
+/// that folds cells); a flap spanning a one-cell slab slides on its symmetry planes.
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -215,7 +216,8 @@ TEST(DeformingMotion, BadInputIsAOneLineError) {
     o = deforming();
     o.rigid_radius = 7.5;
     e = error_of(wing(), m, o);
-    EXPECT_NE(e.find("rigid_radius 7.5 m; expected less than fixed_radius 7.0001"), std::string::npos)
+    EXPECT_NE(e.find("rigid_radius 7.5 m; expected less than fixed_radius 7.0001"),
+              std::string::npos)
         << e;
     o = deforming();
     o.wall_markers = {"wings"};
@@ -244,6 +246,100 @@ TEST(DeformingMotion, BadInputIsAOneLineError) {
         EXPECT_NE(std::string(err.what()).find("pitch.csv, step 10: t = 0.25 s"), std::string::npos)
             << err.what();
     }
+}
+
+/// A one-cell slab of hexahedra, [0, 3] x [0, 1] x [0, 1] m, n_x cells along x and n_z along z:
+/// the wall z = 0 is `flap` for 1 <= x <= 2 (hinge along y at x = 1) and `wall` elsewhere, the
+/// planes y = 0 and y = 1 are `symmetry_back` and `symmetry_front`, the rest `farfield`. Every
+/// node of the flap lies on a symmetry plane.
+manta::mesh::Mesh flap_slab(int n_x, int n_z) {
+    using manta::mesh::CellType;
+    using manta::mesh::FaceType;
+    manta::mesh::Mesh m("flap_slab");
+    auto id = [&](int i, int j, int k) { return static_cast<Index>(i + (n_x + 1) * (j + 2 * k)); };
+    for (int k = 0; k <= n_z; ++k)
+        for (int j = 0; j <= 1; ++j)
+            for (int i = 0; i <= n_x; ++i) m.add_node(Vector3d(3.0 * i / n_x, j, 1.0 * k / n_z));
+    const int wall = m.add_marker("wall"), flap = m.add_marker("flap"),
+              back = m.add_marker("symmetry_back"), front = m.add_marker("symmetry_front"),
+              far = m.add_marker("farfield");
+    auto quad = [&](Index a, Index b, Index c, Index d, int marker) {
+        m.add_face(FaceType::quad, std::array<Index, 4>{a, b, c, d}, marker);
+    };
+    for (int k = 0; k < n_z; ++k)
+        for (int i = 0; i < n_x; ++i) {
+            m.add_cell(CellType::hexa,
+                       std::array<Index, 8>{id(i, 0, k), id(i + 1, 0, k), id(i + 1, 1, k),
+                                            id(i, 1, k), id(i, 0, k + 1), id(i + 1, 0, k + 1),
+                                            id(i + 1, 1, k + 1), id(i, 1, k + 1)});
+            quad(id(i, 0, k), id(i + 1, 0, k), id(i + 1, 0, k + 1), id(i, 0, k + 1), back);
+            quad(id(i, 1, k), id(i + 1, 1, k), id(i + 1, 1, k + 1), id(i, 1, k + 1), front);
+        }
+    for (int i = 0; i < n_x; ++i) {
+        quad(id(i, 0, 0), id(i + 1, 0, 0), id(i + 1, 1, 0), id(i, 1, 0),
+             3 * i >= n_x && 3 * i < 2 * n_x ? flap : wall);
+        quad(id(i, 0, n_z), id(i + 1, 0, n_z), id(i + 1, 1, n_z), id(i, 1, n_z), far);
+    }
+    for (int k = 0; k < n_z; ++k) {
+        quad(id(0, 0, k), id(0, 1, k), id(0, 1, k + 1), id(0, 0, k + 1), far);
+        quad(id(n_x, 0, k), id(n_x, 1, k), id(n_x, 1, k + 1), id(n_x, 0, k + 1), far);
+    }
+    m.finalize();
+    return m;
+}
+
+TEST(SymmetrySliding, AFlapSpanningAOneCellSlabSlidesOnItsPlanes) {
+    // Before symmetry planes slid, every node of this flap was a seam node (shared with a
+    // symmetry marker) and held fixed: nothing could move. Now the nodes away from the seams with
+    // the wall (x = 1 and x = 2) rotate exactly about the hinge, every node stays in its plane.
+    const manta::mesh::Mesh slab = flap_slab(12, 8);
+    manta::meshmotion::ControlSurfaceSpec flap;
+    flap.mode = "elevator";
+    flap.marker = "flap";
+    flap.hinge = {Vector3d(1.0, 0.0, 0.0), Vector3d(1.0, 1.0, 0.0)};  // toward +y: TE down
+    flap.source = "cfd.yaml:7";
+    const double delta = 10.0 * deg;
+    const Motion m = motion(0.0, 0.0, delta, 0.0);
+    try {
+        const MeshMotion held(slab, m, MotionPlacement{g, "flap.csv"}, {flap});
+        ADD_FAILURE() << "without symmetry markers the flap cannot move";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("no node of marker 'flap' is free to move"),
+                  std::string::npos)
+            << e.what();
+    }
+    DeformationOptions o;
+    o.symmetry_markers = {"symmetry_back", "symmetry_front"};
+    const MeshMotion mm(slab, m, MotionPlacement{g, "flap.csv"}, {flap}, o);
+    mm.check_motion();
+    Matrix3Xd y;
+    mm.deformed({delta}, y);
+    double exact = 0.0, off_plane = 0.0, moved = 0.0;
+    int n_exact = 0;
+    for (Index i = 0; i < slab.n_nodes(); ++i) {
+        const Vector3d x0 = slab.node(i);
+        off_plane = std::max(off_plane, std::abs(y(1, i) - x0.y()));
+        moved = std::max(moved, (y.col(i) - x0).norm());
+        if (x0.z() == 0.0 && std::abs(x0.x() - 1.5) < 1e-12) {
+            // Rotation by delta about the hinge (x = 1, z = 0) toward +y: trailing edge down.
+            const Vector3d r = x0 - Vector3d(1.0, x0.y(), 0.0);
+            const Vector3d expected =
+                Vector3d(1.0, x0.y(), 0.0) +
+                Vector3d(r.x() * std::cos(delta), 0.0, -r.x() * std::sin(delta));
+            exact = std::max(exact, (y.col(i) - expected).norm());
+            ++n_exact;
+        }
+    }
+    EXPECT_EQ(n_exact, 2);
+    EXPECT_LT(exact, 1e-12);
+    EXPECT_LT(off_plane, 1e-15);
+    EXPECT_GT(moved, 0.05);
+    // The slab with its symmetry planes in the deforming body motion: the walls are `wall` and
+    // `flap`, which touch the far field at x = 0 and x = 3: refused.
+    DeformationOptions d = o;
+    d.body = BodyMotion::deforming;
+    d.wall_markers = {"wall", "flap"};
+    EXPECT_THROW((void)MeshMotion(slab, m, MotionPlacement{g, "flap.csv"}, {flap}, d), InputError);
 }
 
 }  // namespace

@@ -134,6 +134,8 @@ struct ControlSurfaceInfo {
     double setup_seconds = 0.0;  ///< wall time of this surface's set-up
 };
 
+struct SymmetryPlanes;  // the symmetry markers' planes (mesh_motion.cpp)
+
 /// What the set-up of the deforming body motion found (for reports and tests).
 struct BodyMotionInfo {
     int n_wall_nodes = 0;     ///< nodes of the wall markers (moving rigidly)
@@ -208,7 +210,7 @@ private:
     void blend_body(const RigidPose& p, Eigen::Matrix3Xd& y) const;
     /// The coordinates the check looks at: the deformed mesh (rigid mode) or the moved one.
     void checked_coordinates(const aero::MotionState& s, double scale, Eigen::Matrix3Xd& y) const;
-    void setup_body(const mesh::Mesh& mesh, std::vector<char>& moved);
+    void setup_body(const mesh::Mesh& mesh, const SymmetryPlanes& planes, std::vector<char>& moved);
     [[nodiscard]] long first_bad_cell(const Eigen::Matrix3Xd& y) const;
     void check(const aero::MotionState& s, const Eigen::Matrix3Xd& y, long step) const;
 
