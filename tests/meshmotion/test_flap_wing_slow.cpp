@@ -146,7 +146,7 @@ TEST(FlapWingLarge, DeformingBodyMotionStepTimesAndMemory) {
         static_cast<double>(mm.memory_bytes()) / (1024.0 * 1024.0), load[0], load[1], load[2]);
     // The wing's box is within 7 m of the far field: every node moves (rigidly within 1.75 m of
     // the box, blended beyond it) but those of the far field.
-    EXPECT_NEAR(b.fixed_radius, 7.0, 1e-3);
+    EXPECT_NEAR(b.fixed_radius, 7.0, 1e-2);  // the tip's nodes lie up to 3e-3 m inside y = 3
     EXPECT_GT(b.n_blended_nodes, 1000);
     EXPECT_GT(b.n_sliding_nodes, 1000);
 }
