@@ -204,8 +204,8 @@ PY
     contains "no v0 named" "$work/err.txt" "v0"
     # Bad input of the motion (issue 17, "Bad input"), each a one-line error and exit 2 before
     # the solver starts: missing columns, decreasing times, NaN, a mode that deflects with no
-    # control surface, a hinge line off its surface, a deforming motion that folds cells, a
-    # symmetry marker that is not plane; a restart of the rigid motion refused by the deforming
+    # control surface, a hinge line off its surface, a deflection and a deforming motion that
+    # fold cells, a symmetry marker that is not plane; a restart of the rigid motion refused by the deforming
     # one, its coefficients.csv kept.
     bad_motion() {  # bad_motion NAME FILE PATTERN [CONFIG]
         check "$1" 2 "$manta" cfd --mesh "$ct5" --motion "$2" --config "${4:-$work/ct5.yaml}" --out "$work/bad"
@@ -222,6 +222,11 @@ PY
     bad_motion "mode with no control surface" "$work/elev.csv" "mode 'elevator' deflects.*no control surface"
     { cat "$work/ct5.yaml"; printf 'control_surfaces: [{mode: elevator, marker: airfoil, hinge: [[5, 0, 0], [5, 1, 0]]}]\n'; } > "$work/hinge.yaml"
     bad_motion "hinge off the surface" "$work/elev.csv" "hinge line .* m from the nearest node of marker 'airfoil'" "$work/hinge.yaml"
+    # The whole aerofoil as a control surface about its quarter chord (it slides on the slab's
+    # symmetry planes): 82 deg folds cells.
+    awk -F, -v OFS=, 'NR > 3 { $8 = sprintf("%.6f", 1.5 * sin(100 * $1)) } { print }' "$work/pitch.csv" > "$work/bigflap.csv"
+    { cat "$work/ct5.yaml"; printf 'control_surfaces: [{mode: elevator, marker: airfoil, hinge: [[0.25, -1, 0], [0.25, 0, 0]]}]\n'; } > "$work/flap.yaml"
+    bad_motion "deflection that folds cells" "$work/bigflap.csv" "bigflap.csv: t = .*folds at node .*with elevator .* deg; the largest deflection that keeps every cell valid is 0\.[0-9]+ of it" "$work/flap.yaml"
     python3 - "$work/pitch60.csv" <<'PY'
 import math, sys
 with open(sys.argv[1], "w") as f:
