@@ -993,13 +993,8 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
     if (x.cols() != x0_.cols()) x.resize(3, x0_.cols());
     if (v.cols() != x0_.cols()) v.resize(3, x0_.cols());
     deform(s, 1.0, x);
-    if (options_.body == BodyMotion::deforming) {
-        Matrix3Xd moved;
-        checked_coordinates(s, 1.0, moved);
-        check(s, moved, step);
-    } else {
-        check(s, x, step);
-    }
+    const bool body = options_.body == BodyMotion::deforming;
+    if (!body) check(s, x, step);  // the deforming mode checks the moved coordinates below
     v.setZero();
     for (const Field& f : fields_) {
         const double delta = f.gain * s.modes[static_cast<std::size_t>(f.mode)];
@@ -1012,25 +1007,27 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
         }
     }
     const RigidPose p = rigid_pose(s, placement_.reference_point);
-    if (options_.body == BodyMotion::deforming) {
+    if (body) {
         // x = y + b P (t + R y - y): v = ydot + b P (v_rigid - ydot), v_rigid the velocity of
-        // the rigidly moved point t + R y.
+        // the rigidly moved point t + R y (the same arithmetic as blend_body for x).
+        const Matrix3d A = p.rotation - Matrix3d::Identity();
         std::size_t k = 0;
         for (Eigen::Index i = 0; i < x.cols(); ++i) {
             const double b = blend_[static_cast<std::size_t>(i)];
             if (b == 0.0) continue;
             const Vector3d y = x.col(i), ydot = v.col(i);
-            const Vector3d xr = p.translation + p.rotation * y;
-            Vector3d d = xr - y;
-            Vector3d dv = p.velocity + p.omega.cross(xr - p.reference) + p.rotation * ydot - ydot;
+            Vector3d d = p.translation + A * y;
+            Vector3d dv =
+                p.velocity + p.omega.cross(y + d - p.reference) + p.rotation * ydot - ydot;
             if (k < slide_node_.size() && slide_node_[k] == i) {
                 d = slide_projection_[k] * d;
                 dv = slide_projection_[k] * dv;
                 ++k;
             }
-            x.col(i) = y + b * d;
+            x.col(i) += b * d;
             v.col(i) = ydot + b * dv;
         }
+        check(s, x, step);
         return;
     }
     for (Eigen::Index i = 0; i < x.cols(); ++i) {
