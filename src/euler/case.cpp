@@ -5,9 +5,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <exception>
 #include <fstream>
 #include <span>
@@ -168,11 +170,12 @@ MotionStepping motion_stepping(const aero::Motion& motion, const std::string& sr
 
 std::unique_ptr<meshmotion::MeshMotion> place_mesh_motion(
     const mesh::Mesh& mesh, const aero::Motion& motion, const ReferenceValues& reference,
-    const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces) {
+    const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
+    const meshmotion::DeformationOptions& options) {
     meshmotion::MotionPlacement placement;
     placement.reference_point = reference.moment_point;
     placement.motion_source = source;
-    auto m = std::make_unique<meshmotion::MeshMotion>(mesh, motion, placement, surfaces);
+    auto m = std::make_unique<meshmotion::MeshMotion>(mesh, motion, placement, surfaces, options);
     m->check_motion();
     return m;
 }
@@ -239,6 +242,8 @@ struct CfdCase::Impl {
     std::filesystem::path unsteady_restart;
     std::vector<std::string> rows;    ///< coefficients.csv rows, step 0 first
     std::vector<int> inner_per_step;  ///< inner iterations of each step (for the summary)
+    /// Wall and CPU seconds of each call for the mesh's coordinates, and of each physical step.
+    std::vector<double> motion_wall_s, motion_cpu_s, step_wall_s, step_cpu_s;
     int unconverged_steps = 0;
 
     Impl(CaseInputs inputs, const parallel::Communicator& c)
@@ -284,6 +289,17 @@ struct CfdCase::Impl {
 };
 
 void CfdCase::Impl::coordinates(long step, Eigen::Matrix3Xd& x) {
+    const auto wall0 = clock::now();
+    const std::clock_t cpu0 = std::clock();
+    struct Timer {  // the deformation's cost, also when it throws
+        Impl& impl;
+        clock::time_point wall0;
+        std::clock_t cpu0;
+        ~Timer() {
+            impl.motion_wall_s.push_back(seconds_since(wall0));
+            impl.motion_cpu_s.push_back(static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC);
+        }
+    } timer{*this, wall0, cpu0};
     const double t = step_time(step);
     if (comm.size() == 1) {
         mesh_motion->coordinates_at(t, x, step);
@@ -324,6 +340,10 @@ void CfdCase::Impl::prepare_motion() {
     time_unit = st.time_unit;
     cfg.unsteady = st.time;
     motion_fingerprint = st.fingerprint;
+    if (cfg.mesh_motion == meshmotion::BodyMotion::deforming)
+        motion_fingerprint +=
+            fmt::format(" mesh_motion=deforming rigid_radius={} fixed_radius={}",
+                        core::format_exact(cfg.rigid_radius), core::format_exact(cfg.fixed_radius));
 }
 
 std::string CfdCase::Impl::coefficient_row(int step, const TimeStepRecord* rec) const {
@@ -519,9 +539,19 @@ void CfdCase::Impl::prepare() {
         std::exception_ptr motion_error;
         if (root) {
             try {
-                mesh_motion =
-                    place_mesh_motion(comm.size() == 1 ? local.mesh : *global, motion,
-                                      setup.reference, in.motion.string(), cfg.control_surfaces);
+                const mesh::Mesh& whole = comm.size() == 1 ? local.mesh : *global;
+                meshmotion::DeformationOptions options;
+                options.body = cfg.mesh_motion;
+                options.rigid_radius = cfg.rigid_radius;
+                options.fixed_radius = cfg.fixed_radius;
+                for (std::size_t m = 0; m < setup.roles.size(); ++m) {
+                    if (setup.roles[m] == BoundaryKind::wall)
+                        options.wall_markers.push_back(whole.markers()[m]);
+                    else if (setup.roles[m] == BoundaryKind::symmetry)
+                        options.symmetry_markers.push_back(whole.markers()[m]);
+                }
+                mesh_motion = place_mesh_motion(whole, motion, setup.reference, in.motion.string(),
+                                                cfg.control_surfaces, options);
             } catch (...) {
                 motion_error = std::current_exception();
             }
@@ -714,7 +744,11 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
     const double interval = cfg.output.checkpoint_interval_s;
     TimeStepRecord rec;
     for (int k = first + 1; k <= last; ++k) {
+        const auto step_wall0 = clock::now();
+        const std::clock_t step_cpu0 = std::clock();
         rec = s.advance();
+        step_wall_s.push_back(seconds_since(step_wall0));
+        step_cpu_s.push_back(static_cast<double>(std::clock() - step_cpu0) / CLOCKS_PER_SEC);
         rows.push_back(coefficient_row(k, &rec));
         inner_per_step.push_back(rec.inner_iterations);
         if (!rec.converged) ++unconverged_steps;
@@ -791,6 +825,31 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
     j["seconds_per_step"] = last > first ? solve_s / (last - first) : 0.0;
     j["mesh_time_s"] = read_s;
     j["deformation_setup_s"] = mesh_motion ? mesh_motion->setup_seconds() : 0.0;
+    {
+        auto median = [](std::vector<double> v) {
+            if (v.empty()) return 0.0;
+            std::sort(v.begin(), v.end());
+            const std::size_t h = v.size() / 2;
+            return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+        };
+        j["mesh_motion"] = {
+            {"mode", cfg.mesh_motion == meshmotion::BodyMotion::deforming ? "deforming" : "rigid"},
+            {"coordinate_calls", motion_wall_s.size()},
+            {"median_wall_s", median(motion_wall_s)},
+            {"median_cpu_s", median(motion_cpu_s)},
+            {"median_step_wall_s", median(step_wall_s)},
+            {"median_step_cpu_s", median(step_cpu_s)}};
+        if (mesh_motion && cfg.mesh_motion == meshmotion::BodyMotion::deforming) {
+            const meshmotion::BodyMotionInfo& b = mesh_motion->body_info();
+            j["mesh_motion"]["rigid_radius"] = b.rigid_radius;
+            j["mesh_motion"]["fixed_radius"] = b.fixed_radius;
+            j["mesh_motion"]["wall_nodes"] = b.n_wall_nodes;
+            j["mesh_motion"]["sliding_nodes"] = b.n_sliding_nodes;
+            j["mesh_motion"]["blended_nodes"] = b.n_blended_nodes;
+            j["mesh_motion"]["checked_cells"] = mesh_motion->n_checked_cells();
+            j["mesh_motion"]["memory_bytes"] = mesh_motion->memory_bytes();
+        }
+    }
     j["wall_time_s"] = seconds_since(t_start);
     j["peak_memory_bytes"] = memory;
     j["motion_fingerprint"] = motion_fingerprint;

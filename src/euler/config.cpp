@@ -156,6 +156,11 @@ CfdConfig read(const ConfigNode& root) {
             "jacobian_interval", t.jacobian_interval, NumberSpec::range(1, 1000, "-")));
         c.output_every = static_cast<int>(
             u.integer_or("output_every", c.output_every, NumberSpec::range(0, 1e9, "steps")));
+        c.mesh_motion = u.choice_or("mesh_motion", "rigid", {"rigid", "deforming"}) == "deforming"
+                            ? meshmotion::BodyMotion::deforming
+                            : meshmotion::BodyMotion::rigid;
+        c.rigid_radius = u.number_or("rigid_radius", c.rigid_radius, NumberSpec::non_negative("m"));
+        c.fixed_radius = u.number_or("fixed_radius", c.fixed_radius, NumberSpec::non_negative("m"));
         u.finish();
     }
     if (auto n = top.optional_child("control_surfaces")) {

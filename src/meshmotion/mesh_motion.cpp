@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -132,12 +133,16 @@ struct Boundary {
     std::vector<double> h;         // shortest distance to a node sharing a cell [m]
 };
 
-Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x) {
+/// The nodes' markers, symmetry planes left out (`symmetry[m]` != 0): a node only on symmetry
+/// planes counts as interior (it slides, docs/mesh-motion.md).
+Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x,
+                     const std::vector<char>& symmetry) {
     const auto n = static_cast<std::size_t>(mesh.n_nodes());
     Boundary b;
     b.node_marker.assign(n, -1);
     for (Index f = 0; f < mesh.n_faces(); ++f) {
         const int m = mesh.face_marker(f);
+        if (symmetry[static_cast<std::size_t>(m)]) continue;
         for (const Index v : mesh.face(f)) {
             int& nm = b.node_marker[static_cast<std::size_t>(v)];
             if (nm == -1)
@@ -160,6 +165,108 @@ Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x) {
         }
     }
     return b;
+}
+
+}  // namespace
+
+/// The symmetry markers' planes and each node's projection onto them.
+struct SymmetryPlanes {
+    std::vector<char> is_symmetry;           // per marker
+    std::vector<Vector3d> normal;            // per marker (symmetry ones)
+    std::vector<int> count;                  // per node: symmetry planes it lies on (<= 3)
+    std::vector<std::array<int, 3>> planes;  // their markers
+    /// Projection of a displacement of node v: onto its plane, onto the line of two, or zero.
+    [[nodiscard]] Matrix3d projection(Index v) const {
+        const auto vv = static_cast<std::size_t>(v);
+        const auto& pl = planes[vv];
+        if (count[vv] == 1) {
+            const Vector3d& m = normal[static_cast<std::size_t>(pl[0])];
+            return Matrix3d::Identity() - m * m.transpose();
+        }
+        if (count[vv] == 2) {
+            const Vector3d e = normal[static_cast<std::size_t>(pl[0])].cross(
+                normal[static_cast<std::size_t>(pl[1])]);
+            if (e.norm() > 1e-6) return e.normalized() * e.normalized().transpose();
+        }
+        return Matrix3d::Zero();
+    }
+};
+
+namespace {
+
+/// Each symmetry marker named in `names` (InputError for one the mesh lacks), its nodes, and a
+/// plane fitted to them (normal: the covariance's eigenvector of least eigenvalue); InputError
+/// when a node is farther than `tolerance` times the diagonal of the marker's box from it.
+SymmetryPlanes symmetry_planes(const mesh::Mesh& mesh, const Matrix3Xd& x0,
+                               const std::vector<std::string>& names, double tolerance) {
+    SymmetryPlanes sp;
+    const auto nm = static_cast<std::size_t>(mesh.n_markers());
+    const auto nn = static_cast<std::size_t>(mesh.n_nodes());
+    sp.is_symmetry.assign(nm, 0);
+    sp.normal.assign(nm, Vector3d::Zero());
+    sp.count.assign(nn, 0);
+    sp.planes.assign(nn, {-1, -1, -1});
+    std::string marker_list;
+    for (const std::string& m : mesh.markers())
+        marker_list += (marker_list.empty() ? "" : ", ") + m;
+    for (const std::string& name : names) {
+        const int id = mesh.find_marker(name);
+        if (id < 0)
+            throw InputError(fmt::format(
+                "{}: symmetry marker '{}' of the mesh motion is not a marker of the mesh; expected "
+                "one of {}",
+                mesh.source(), name, marker_list));
+        sp.is_symmetry[static_cast<std::size_t>(id)] = 1;
+    }
+    for (Index f = 0; f < mesh.n_faces(); ++f) {
+        const int m = mesh.face_marker(f);
+        if (!sp.is_symmetry[static_cast<std::size_t>(m)]) continue;
+        for (const Index v : mesh.face(f)) {
+            const auto vv = static_cast<std::size_t>(v);
+            auto& p = sp.planes[vv];
+            if (std::find(p.begin(), p.end(), m) == p.end() && sp.count[vv] < 3)
+                p[static_cast<std::size_t>(sp.count[vv]++)] = m;
+        }
+    }
+    for (std::size_t m = 0; m < nm; ++m) {
+        if (!sp.is_symmetry[m]) continue;
+        std::vector<Index> nodes;
+        for (std::size_t v = 0; v < nn; ++v) {
+            const auto& p = sp.planes[v];
+            if (std::find(p.begin(), p.end(), static_cast<int>(m)) != p.end())
+                nodes.push_back(static_cast<Index>(v));
+        }
+        if (nodes.empty()) continue;
+        Vector3d c = Vector3d::Zero(), lo = Vector3d::Constant(1e300), hi = -lo;
+        for (const Index v : nodes) {
+            c += x0.col(v);
+            lo = lo.cwiseMin(x0.col(v));
+            hi = hi.cwiseMax(x0.col(v));
+        }
+        c /= static_cast<double>(nodes.size());
+        Matrix3d cov = Matrix3d::Zero();
+        for (const Index v : nodes) cov += (x0.col(v) - c) * (x0.col(v) - c).transpose();
+        const Eigen::SelfAdjointEigenSolver<Matrix3d> es(cov);
+        const Vector3d n = es.eigenvectors().col(0).normalized();
+        const double tol = tolerance * (hi - lo).norm();
+        Index worst = nodes.front();
+        double dmax = -1.0;
+        for (const Index v : nodes) {
+            const double d = std::abs(n.dot(x0.col(v) - c));
+            if (d > dmax) {
+                dmax = d;
+                worst = v;
+            }
+        }
+        if (!(dmax <= tol))
+            throw InputError(fmt::format(
+                "{}: symmetry marker '{}' is not plane: node {} {} is {:.6g} m from the plane "
+                "fitted to its {} nodes (normal {}); expected within {:.6g} m ({:g} of its extent)",
+                mesh.source(), mesh.markers()[m], worst, text(x0.col(worst)), dmax, nodes.size(),
+                text(n), tol, tolerance));
+        sp.normal[m] = n;
+    }
+    return sp;
 }
 
 /// Surface points carrying the two fields of one control surface and their gradients, for the
@@ -245,6 +352,12 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
     if (!(options_.hinge_blend_chords >= 0.0) || !(options_.edge_blend_chords >= 0.0))
         throw InputError("mesh motion: blend widths must be >= 0");
     if (options_.max_points < 1) throw InputError("mesh motion: max_points must be >= 1");
+    positive(options_.plane_tolerance, "plane_tolerance");
+    for (const auto& [v, what] : {std::pair{options_.rigid_radius, "rigid_radius"},
+                                  std::pair{options_.fixed_radius, "fixed_radius"}})
+        if (!(v >= 0.0 && std::isfinite(v)))
+            throw InputError(fmt::format(
+                "mesh motion: {} = {} m; expected a number >= 0 (0: the default)", what, v));
 
     const Index n = mesh.n_nodes();
     x0_.resize(3, n);
@@ -308,7 +421,11 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
         }
     }
 
-    const Boundary boundary = boundary_of(mesh, x0_);
+    // Symmetry planes: checked when something slides on them (the deforming body motion, or a
+    // control surface that touches one).
+    const SymmetryPlanes planes =
+        symmetry_planes(mesh, x0_, options_.symmetry_markers, options_.plane_tolerance);
+    const Boundary boundary = boundary_of(mesh, x0_, planes.is_symmetry);
     std::vector<char> moved(static_cast<std::size_t>(n), 0);
     for (const ControlSurfaceSpec& c : specs_) {
         const auto t_surface = Clock::now();
@@ -554,6 +671,11 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
                 v1 *= f;
                 v2 *= f;
             }
+            if (planes.count[static_cast<std::size_t>(v)] > 0) {
+                const Matrix3d P = planes.projection(v);
+                v1 = P * v1;
+                v2 = P * v2;
+            }
             field.nodes.push_back(v);
             f1.push_back(v1);
             f2.push_back(v2);
@@ -572,12 +694,21 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
         info_.push_back(std::move(info));
     }
 
-    // Cells the deformation can change: those with a moved node.
+    if (options_.body == BodyMotion::deforming) setup_body(mesh, planes, moved);
+
+    // Cells the deformation can change: those with a moved node, and in the deforming mode those
+    // whose nodes do not all have the same blend (the others move rigidly or stay).
     for (Index c = 0; c < mesh.n_cells(); ++c) {
         const auto cn = mesh.cell(c);
-        if (std::none_of(cn.begin(), cn.end(),
-                         [&](Index v) { return moved[static_cast<std::size_t>(v)] != 0; }))
-            continue;
+        bool changes = std::any_of(
+            cn.begin(), cn.end(), [&](Index v) { return moved[static_cast<std::size_t>(v)] != 0; });
+        if (!changes && !blend_.empty()) {
+            const double b0 = blend_[static_cast<std::size_t>(cn[0])];
+            changes = std::any_of(cn.begin(), cn.end(), [&](Index v) {
+                return blend_[static_cast<std::size_t>(v)] != b0;
+            });
+        }
+        if (!changes) continue;
         const CellType t = mesh.cell_type(c);
         checked_type_.push_back(t);
         checked_cell_.push_back(c);
@@ -587,6 +718,156 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
                                  n_sub_tetrahedra(t));
     }
     setup_seconds_ = seconds_since(t_start);
+}
+
+void MeshMotion::setup_body(const mesh::Mesh& mesh, const SymmetryPlanes& planes,
+                            std::vector<char>& moved) {
+    const auto t_start = Clock::now();
+    const Index n = mesh.n_nodes();
+    const auto nn = static_cast<std::size_t>(n);
+    // Marker roles: 1 wall (moves with the body), 2 symmetry (slides), 0 fixed.
+    std::vector<int> role(static_cast<std::size_t>(mesh.n_markers()), 0);
+    std::string marker_list;
+    for (const std::string& m : mesh.markers())
+        marker_list += (marker_list.empty() ? "" : ", ") + m;
+    for (const std::string& m : options_.wall_markers) {
+        const int id = mesh.find_marker(m);
+        if (id < 0)
+            throw InputError(fmt::format(
+                "{}: wall marker '{}' of the deforming mesh motion is not a marker of the mesh; "
+                "expected one of {}",
+                mesh.source(), m, marker_list));
+        if (planes.is_symmetry[static_cast<std::size_t>(id)])
+            throw InputError(fmt::format(
+                "{}: marker '{}' is given as a wall and as a symmetry plane; expected one role",
+                mesh.source(), m));
+        role[static_cast<std::size_t>(id)] = 1;
+    }
+    for (std::size_t m = 0; m < role.size(); ++m)
+        if (planes.is_symmetry[m]) role[m] = 2;
+    if (options_.wall_markers.empty())
+        throw InputError(fmt::format(
+            "{}: the deforming mesh motion has no wall marker to move (markers: {}); expected at "
+            "least one wall",
+            mesh.source(), marker_list));
+
+    // Each node's markers by role: a wall one, a fixed one.
+    std::vector<int> wall_of(nn, -1), fixed_of(nn, -1);
+    for (Index f = 0; f < mesh.n_faces(); ++f) {
+        const int m = mesh.face_marker(f);
+        const int r = role[static_cast<std::size_t>(m)];
+        for (const Index v : mesh.face(f)) {
+            const auto vv = static_cast<std::size_t>(v);
+            if (r == 1)
+                wall_of[vv] = m;
+            else if (r == 0)
+                fixed_of[vv] = m;
+        }
+    }
+
+    // The walls' box; a wall node on a fixed marker cannot both move and stay.
+    Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    int n_wall = 0, n_fixed = 0;
+    for (Index v = 0; v < n; ++v) {
+        const auto vv = static_cast<std::size_t>(v);
+        if (wall_of[vv] >= 0) {
+            if (fixed_of[vv] >= 0)
+                throw InputError(fmt::format(
+                    "{}: node {} {} lies on wall marker '{}' and on marker '{}', which the "
+                    "deforming mesh motion holds fixed; expected the moving walls apart from the "
+                    "fixed boundaries (or the rigid mesh motion)",
+                    mesh.source(), v, text(x0_.col(v)),
+                    mesh.markers()[static_cast<std::size_t>(wall_of[vv])],
+                    mesh.markers()[static_cast<std::size_t>(fixed_of[vv])]));
+            ++n_wall;
+            lo = lo.cwiseMin(x0_.col(v));
+            hi = hi.cwiseMax(x0_.col(v));
+        }
+    }
+    if (n_wall == 0)
+        throw InputError(
+            fmt::format("{}: the wall markers of the deforming mesh motion have no "
+                        "nodes; expected at least one wall face",
+                        mesh.source()));
+    double nearest_fixed = std::numeric_limits<double>::infinity();
+    Index nearest_node = -1;
+    for (Index v = 0; v < n; ++v)
+        if (fixed_of[static_cast<std::size_t>(v)] >= 0) {
+            ++n_fixed;
+            const double rho = box_distance(x0_.col(v), lo, hi);
+            if (rho < nearest_fixed) {
+                nearest_fixed = rho;
+                nearest_node = v;
+            }
+        }
+    const double r2 = options_.fixed_radius > 0.0 ? options_.fixed_radius : nearest_fixed;
+    if (nearest_node >= 0 && r2 > nearest_fixed * (1.0 + 1e-12))
+        throw InputError(fmt::format(
+            "{}: fixed_radius {:.6g} m reaches past the fixed boundary: node {} {} of marker '{}' "
+            "is {:.6g} m from the walls' box; expected at most {:.6g} m",
+            mesh.source(), r2, nearest_node, text(x0_.col(nearest_node)),
+            mesh.markers()[static_cast<std::size_t>(
+                fixed_of[static_cast<std::size_t>(nearest_node)])],
+            nearest_fixed, nearest_fixed));
+    const double r1 =
+        options_.rigid_radius > 0.0 ? options_.rigid_radius : std::min((hi - lo).norm(), 0.25 * r2);
+    if (!(r1 < r2))
+        throw InputError(
+            fmt::format("{}: rigid_radius {:.6g} m; expected less than fixed_radius {:.6g} m",
+                        mesh.source(), r1, r2));
+
+    // Blend: 1 within r1 of the walls' box, 0 from r2 on, 1 - S((rho - r1) / (r2 - r1)) between.
+    blend_.assign(nn, 0.0);
+    BodyMotionInfo& info = body_info_;
+    for (Index v = 0; v < n; ++v) {
+        const auto vv = static_cast<std::size_t>(v);
+        double b = 0.0;
+        if (wall_of[vv] >= 0) {
+            b = 1.0;
+        } else if (fixed_of[vv] < 0) {
+            const double rho = box_distance(x0_.col(v), lo, hi);
+            b = std::isfinite(r2) ? 1.0 - smoothstep((rho - r1) / (r2 - r1)) : 1.0;
+        }
+        blend_[vv] = b;
+        if (b > 0.0 && b < 1.0) {
+            ++info.n_blended_nodes;
+            moved[vv] = 1;
+        }
+        if (b == 0.0 || planes.count[vv] == 0) continue;
+        // Sliding: the displacement projected onto the plane, or onto the line of two planes.
+        slide_node_.push_back(v);
+        slide_projection_.push_back(planes.projection(v));
+        moved[vv] = 1;
+    }
+    info.n_wall_nodes = n_wall;
+    info.n_sliding_nodes = static_cast<int>(slide_node_.size());
+    info.n_fixed_nodes = n_fixed;
+    info.rigid_radius = r1;
+    info.fixed_radius = r2;
+    info.setup_seconds = seconds_since(t_start);
+}
+
+void MeshMotion::blend_body(const RigidPose& p, Matrix3Xd& y) const {
+    std::size_t k = 0;
+    const Matrix3d A = p.rotation - Matrix3d::Identity();
+    for (Eigen::Index i = 0; i < y.cols(); ++i) {
+        const double b = blend_[static_cast<std::size_t>(i)];
+        if (b == 0.0) continue;
+        Vector3d d = p.translation + A * y.col(i);
+        if (k < slide_node_.size() && slide_node_[k] == i) d = slide_projection_[k++] * d;
+        y.col(i) += b * d;
+    }
+}
+
+void MeshMotion::checked_coordinates(const aero::MotionState& s, double scale, Matrix3Xd& y) const {
+    deform(s, scale, y);
+    if (options_.body != BodyMotion::deforming) return;
+    aero::MotionState scaled = s;
+    for (int k = 0; k < 3; ++k) {
+        scaled.position[static_cast<std::size_t>(k)] *= scale;
+        scaled.euler[static_cast<std::size_t>(k)] *= scale;
+    }
+    blend_body(rigid_pose(scaled, placement_.reference_point), y);
 }
 
 void MeshMotion::deform(const aero::MotionState& s, double scale, Matrix3Xd& y) const {
@@ -637,15 +918,21 @@ void MeshMotion::check(const aero::MotionState& s, const Matrix3Xd& y, long step
     Matrix3Xd trial;
     for (int it = 0; it < 30; ++it) {
         const double mid = 0.5 * (lo + hi);
-        deform(s, mid, trial);
+        checked_coordinates(s, mid, trial);
         (first_bad_cell(trial) < 0 ? lo : hi) = mid;
     }
     const auto k = static_cast<std::size_t>(bad);
     Index node = checked_nodes_[static_cast<std::size_t>(checked_offsets_[k])];
     double dmax = -1.0;
+    // The displacement that shapes the cell: from the reference mesh (rigid mode), or from the
+    // rigidly moved reference mesh (deforming mode, whose check sees the moved mesh).
+    const RigidPose pose = rigid_pose(s, placement_.reference_point);
+    const bool body = options_.body == BodyMotion::deforming;
     for (auto i = checked_offsets_[k]; i < checked_offsets_[k + 1]; ++i) {
         const Index v = checked_nodes_[static_cast<std::size_t>(i)];
-        const double d = (y.col(v) - x0_.col(v)).norm();
+        const Vector3d ref =
+            body ? Vector3d(pose.translation + pose.rotation * x0_.col(v)) : Vector3d(x0_.col(v));
+        const double d = (y.col(v) - ref).norm();
         if (d > dmax) {
             dmax = d;
             node = v;
@@ -663,6 +950,26 @@ void MeshMotion::check(const aero::MotionState& s, const Matrix3Xd& y, long step
         valid += fmt::format("{}{} {:.4g} deg", valid.empty() ? "" : ", ", name,
                              lo * v * 180.0 / std::numbers::pi);
     }
+    if (body) {
+        const double r = std::sqrt(s.position[0] * s.position[0] + s.position[1] * s.position[1] +
+                                   s.position[2] * s.position[2]);
+        auto pose_text = [&](double f) {
+            return fmt::format(
+                "phi {:.4g} deg, theta {:.4g} deg, psi {:.4g} deg, reference point "
+                "displaced {:.4g} m",
+                f * s.euler[0] * 180.0 / std::numbers::pi,
+                f * s.euler[1] * 180.0 / std::numbers::pi,
+                f * s.euler[2] * 180.0 / std::numbers::pi, f * r);
+        };
+        throw InputError(fmt::format(
+            "{}{}: t = {:.9g} s: cell {} ({}) folds at node {} {} in the deforming mesh motion "
+            "with {}{}{}; the largest fraction of the motion that keeps every cell valid is "
+            "{:.4f} of it ({}{}{}); expected a smaller motion, or a larger fixed_radius",
+            placement_.motion_source, step >= 0 ? fmt::format(", step {}", step) : std::string(),
+            s.t, checked_cell_[k], mesh::name(checked_type_[k]), node, text(x0_.col(node)),
+            pose_text(1.0), now.empty() ? "" : ", ", now, lo, pose_text(lo),
+            valid.empty() ? "" : ", ", valid));
+    }
     throw InputError(fmt::format(
         "{}{}: t = {:.9g} s: cell {} ({}) folds at node {} {} with {}; the largest deflection "
         "that keeps every cell valid is {:.4f} of it ({})",
@@ -673,8 +980,9 @@ void MeshMotion::check(const aero::MotionState& s, const Matrix3Xd& y, long step
 void MeshMotion::coordinates_at(double t, Matrix3Xd& out, long step) const {
     const aero::MotionState s = motion_.at(t);
     if (out.cols() != x0_.cols()) out.resize(3, x0_.cols());
-    deform(s, 1.0, out);
+    checked_coordinates(s, 1.0, out);
     check(s, out, step);
+    if (options_.body == BodyMotion::deforming) return;
     const RigidPose p = rigid_pose(s, placement_.reference_point);
     for (Eigen::Index i = 0; i < out.cols(); ++i) {
         const Vector3d y = out.col(i);
@@ -687,7 +995,8 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
     if (x.cols() != x0_.cols()) x.resize(3, x0_.cols());
     if (v.cols() != x0_.cols()) v.resize(3, x0_.cols());
     deform(s, 1.0, x);
-    check(s, x, step);
+    const bool body = options_.body == BodyMotion::deforming;
+    if (!body) check(s, x, step);  // the deforming mode checks the moved coordinates below
     v.setZero();
     for (const Field& f : fields_) {
         const double delta = f.gain * s.modes[static_cast<std::size_t>(f.mode)];
@@ -700,6 +1009,29 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
         }
     }
     const RigidPose p = rigid_pose(s, placement_.reference_point);
+    if (body) {
+        // x = y + b P (t + R y - y): v = ydot + b P (v_rigid - ydot), v_rigid the velocity of
+        // the rigidly moved point t + R y (the same arithmetic as blend_body for x).
+        const Matrix3d A = p.rotation - Matrix3d::Identity();
+        std::size_t k = 0;
+        for (Eigen::Index i = 0; i < x.cols(); ++i) {
+            const double b = blend_[static_cast<std::size_t>(i)];
+            if (b == 0.0) continue;
+            const Vector3d y = x.col(i), ydot = v.col(i);
+            Vector3d d = p.translation + A * y;
+            Vector3d dv =
+                p.velocity + p.omega.cross(y + d - p.reference) + p.rotation * ydot - ydot;
+            if (k < slide_node_.size() && slide_node_[k] == i) {
+                d = slide_projection_[k] * d;
+                dv = slide_projection_[k] * dv;
+                ++k;
+            }
+            x.col(i) += b * d;
+            v.col(i) = ydot + b * dv;
+        }
+        check(s, x, step);
+        return;
+    }
     for (Eigen::Index i = 0; i < x.cols(); ++i) {
         const Vector3d y = x.col(i), ydot = v.col(i);
         const Vector3d xi = p.translation + p.rotation * y;
@@ -708,12 +1040,25 @@ void MeshMotion::state_at(double t, Matrix3Xd& x, Matrix3Xd& v, long step) const
     }
 }
 
+std::size_t MeshMotion::memory_bytes() const {
+    std::size_t b = sizeof(double) * static_cast<std::size_t>(x0_.size());
+    for (const Field& f : fields_)
+        b += sizeof(Index) * f.nodes.size() +
+             sizeof(double) * static_cast<std::size_t>(f.m1.size() + f.m2.size());
+    b += sizeof(double) * blend_.size() + sizeof(Index) * slide_node_.size() +
+         sizeof(Eigen::Matrix3d) * slide_projection_.size();
+    b += sizeof(CellType) * checked_type_.size() + sizeof(Index) * checked_cell_.size() +
+         sizeof(std::int64_t) * checked_offsets_.size() + sizeof(Index) * checked_nodes_.size() +
+         sizeof(double) * checked_floor_.size();
+    return b;
+}
+
 void MeshMotion::check_motion() const {
-    if (fields_.empty()) return;
+    if (fields_.empty() && options_.body != BodyMotion::deforming) return;
     Matrix3Xd y;
     for (std::size_t i = 0; i < motion_.n_samples(); ++i) {
         const aero::MotionState s = motion_.at(motion_.t[i]);
-        deform(s, 1.0, y);
+        checked_coordinates(s, 1.0, y);
         check(s, y, -1);
     }
 }

@@ -159,8 +159,8 @@ fi
 
 # Time-accurate runs (`--motion`) on SU2's NACA 64A010 mesh (2-D, turned y up): a short pitching
 # motion; kill -9 during the run and the same command resumes to the uninterrupted history byte
-# for byte; a restart of another motion, a time step that does not divide the motion and a
-# motion without v0 are one-line errors.
+# for byte; a restart of another motion, a time step that does not divide the motion, a
+# motion without v0 and the bad input below are one-line errors; the deforming mesh motion runs.
 ct5=$shared/reference/naca64a010_ct5/mesh_NACA64A010_inv.su2
 if [ -f "$ct5" ]; then
     python3 - "$work/pitch.csv" "$work/pitch2.csv" <<'PY'
@@ -205,6 +205,52 @@ PY
     grep -v '^# v0' "$work/pitch.csv" > "$work/nov0.csv"
     check "motion without v0" 2 "$manta" cfd --mesh "$ct5" --motion "$work/nov0.csv" --config "$work/ct5.yaml" --out "$work/u5"
     contains "no v0 named" "$work/err.txt" "v0"
+    # Bad input of the motion (issue 17, "Bad input"), each a one-line error and exit 2 before
+    # the solver starts: missing columns, decreasing times, NaN, a mode that deflects with no
+    # control surface, a hinge line off its surface, a deflection and a deforming motion that
+    # fold cells, a symmetry marker that is not plane; a restart of the rigid motion refused by the deforming
+    # one, its coefficients.csv kept.
+    bad_motion() {  # bad_motion NAME FILE PATTERN [CONFIG]
+        check "$1" 2 "$manta" cfd --mesh "$ct5" --motion "$2" --config "${4:-$work/ct5.yaml}" --out "$work/bad"
+        one_line "$1: one line" "$work/err.txt"
+        contains "$1: says what" "$work/err.txt" "$3"
+    }
+    sed 's/,mode_rudder$//; s/,0$//' "$work/pitch.csv" > "$work/nocol.csv"
+    bad_motion "motion with a missing column" "$work/nocol.csv" "nocol.csv:3: missing column 'mode_rudder'"
+    awk -F, -v OFS=, 'NR == 6 { $1 = "0.001" } { print }' "$work/pitch.csv" > "$work/decr.csv"
+    bad_motion "motion with decreasing times" "$work/decr.csv" "decr.csv:6:.*increas"
+    awk -F, -v OFS=, 'NR == 7 { $6 = "nan" } { print }' "$work/pitch.csv" > "$work/nan.csv"
+    bad_motion "motion with NaN" "$work/nan.csv" "nan.csv:7:.*'theta'.*finite"
+    awk -F, -v OFS=, 'NR > 3 { $8 = "0.1" } { print }' "$work/pitch.csv" > "$work/elev.csv"
+    bad_motion "mode with no control surface" "$work/elev.csv" "mode 'elevator' deflects.*no control surface"
+    { cat "$work/ct5.yaml"; printf 'control_surfaces: [{mode: elevator, marker: airfoil, hinge: [[5, 0, 0], [5, 1, 0]]}]\n'; } > "$work/hinge.yaml"
+    bad_motion "hinge off the surface" "$work/elev.csv" "hinge line .* m from the nearest node of marker 'airfoil'" "$work/hinge.yaml"
+    # The whole aerofoil as a control surface about its quarter chord (it slides on the slab's
+    # symmetry planes): 82 deg folds cells.
+    awk -F, -v OFS=, 'NR > 3 { $8 = sprintf("%.6f", 1.5 * sin(100 * $1)) } { print }' "$work/pitch.csv" > "$work/bigflap.csv"
+    { cat "$work/ct5.yaml"; printf 'control_surfaces: [{mode: elevator, marker: airfoil, hinge: [[0.25, -1, 0], [0.25, 0, 0]]}]\n'; } > "$work/flap.yaml"
+    bad_motion "deflection that folds cells" "$work/bigflap.csv" "bigflap.csv: t = .*folds at node .*with elevator .* deg; the largest deflection that keeps every cell valid is 0\.[0-9]+ of it" "$work/flap.yaml"
+    python3 - "$work/pitch60.csv" <<'PY'
+import math, sys
+with open(sys.argv[1], "w") as f:
+    f.write("# v0: 270.876\n# mach: 0.796\nt,x_ref,y_ref,z_ref,phi,theta,psi,mode_elevator,mode_aileron,mode_rudder\n")
+    for i in range(9):
+        t = i * 0.0025
+        f.write(f"{t!r},0,0,0,0,{math.radians(60) * math.sin(100 * t)!r},0,0,0,0\n")
+PY
+    sed 's/unsteady: {max_inner: 4, output_every: 4}/unsteady: {max_inner: 4, mesh_motion: deforming}/' "$work/ct5.yaml" > "$work/deform.yaml"
+    sed 's/mesh_motion: deforming/mesh_motion: deforming, rigid_radius: 0.6, fixed_radius: 0.8/' "$work/deform.yaml" > "$work/tight.yaml"
+    bad_motion "deforming motion that folds cells" "$work/pitch60.csv" "pitch60.csv: t = .*folds at node .*the largest fraction of the motion that keeps every cell valid is 0\.[0-9]+ of it" "$work/tight.yaml"
+    sed 's/markers: {airfoil: wall}/markers: {airfoil: wall, farfield: symmetry}/' "$work/deform.yaml" > "$work/curved.yaml"
+    bad_motion "symmetry marker not plane" "$work/pitch.csv" "symmetry marker 'farfield' is not plane: node [0-9]+" "$work/curved.yaml"
+    check "rigid motion, 1 step" 0 "${ucfd[@]}" --out "$work/u6" --max-steps 1
+    cp "$work/u6/coefficients.csv" "$work/u6_before.csv"
+    check "deforming restart of a rigid run" 2 "$manta" cfd --mesh "$ct5" --motion "$work/pitch.csv" --config "$work/deform.yaml" --out "$work/u6"
+    one_line "deforming restart: one line" "$work/err.txt"
+    contains "deforming restart: another motion" "$work/err.txt" "belongs to another motion.*mesh_motion=deforming"
+    if cmp -s "$work/u6_before.csv" "$work/u6/coefficients.csv"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: refused restart changed coefficients.csv"; fi
+    check "deforming motion, 2 steps" 0 "$manta" cfd --mesh "$ct5" --motion "$work/pitch.csv" --config "$work/deform.yaml" --out "$work/u7" --max-steps 2
+    contains "deforming summary" "$work/u7/summary.json" '"mode": "deforming"'
     if [ -n "$mpiexec" ]; then
         # 1 and 2 processes: the same history to the inner tolerance (3 steps; the inner
         # iterations reach 1.6-3 orders here, so the processes' block-Jacobi preconditioners

@@ -120,11 +120,13 @@ struct MotionStepping {
     const std::string& dt_what = "manta cfd: --dt", const std::string& motion_what = {});
 
 /// The mesh's motion along `motion` about the reference values' moment point, with the control
-/// surfaces `surfaces`, every sample of the motion checked (meshmotion::MeshMotion::check_motion).
-/// InputError (one line) as MeshMotion's constructor and check.
+/// surfaces `surfaces` and the deformation `options` (the body's motion rigid or deforming),
+/// every sample of the motion checked (meshmotion::MeshMotion::check_motion). InputError (one
+/// line) as MeshMotion's constructor and check.
 [[nodiscard]] std::unique_ptr<meshmotion::MeshMotion> place_mesh_motion(
     const mesh::Mesh& mesh, const aero::Motion& motion, const ReferenceValues& reference,
-    const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces);
+    const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
+    const meshmotion::DeformationOptions& options = {});
 
 /// One instant of a run along a motion: the wall forces `f` (the solver's coefficients, on the
 /// free stream's dynamic pressure, mesh-like axes of the flow frame, moments about the fixed

@@ -45,6 +45,12 @@ struct CfdConfig {
     /// motion file).
     UnsteadySettings unsteady;
     int output_every = 0;  ///< `unsteady.output_every`: steps between VTU outputs (0: none)
+    /// `unsteady.mesh_motion`: rigid (the whole mesh moves) | deforming (the walls move, the far
+    /// field stays, symmetry planes slide; docs/mesh-motion.md).
+    meshmotion::BodyMotion mesh_motion = meshmotion::BodyMotion::rigid;
+    /// `unsteady.rigid_radius`, `unsteady.fixed_radius` [m] of the deforming mesh motion (0: the
+    /// defaults of meshmotion::DeformationOptions).
+    double rigid_radius = 0.0, fixed_radius = 0.0;
     /// `control_surfaces:` (meshmotion::parse_control_surfaces, docs/mesh-motion.md).
     std::vector<meshmotion::ControlSurfaceSpec> control_surfaces;
     std::string source = "<defaults>";    ///< the file, for messages

@@ -2,8 +2,10 @@
 /// @file mesh_motion.hpp
 /// `MeshMotion`: the node coordinates (and velocities) of a volume mesh that moves rigidly along
 /// an `aero::Motion` and whose control surfaces deflect as mode shapes spread into the volume by
-/// inverse-distance weighting (docs/mesh-motion.md, docs/adr/0003-moving-meshes.md items 1, 6, 7).
-/// Knows nothing of any flow solver: it turns a time into coordinates.
+/// inverse-distance weighting (docs/mesh-motion.md, docs/adr/0003-moving-meshes.md items 1, 6, 7);
+/// or, in the deforming body motion (item 8), whose walls move rigidly while the far field stays,
+/// the volume blends between them and symmetry planes slide. Knows nothing of any flow solver: it
+/// turns a time into coordinates.
 ///
 /// Frames. The mesh is given in mesh axes, which are geometry axes (x aft / downstream, y right,
 /// z up; docs/conventions.md, docs/euler.md). The moving mesh is written in the *flow frame*: the
@@ -52,8 +54,31 @@ struct ControlSurfaceSpec {
     std::string source = "control surface";  ///< where it was defined ("cfd.yaml:12"), for messages
 };
 
+/// How the rigid part of the motion reaches the mesh.
+enum class BodyMotion {
+    rigid,      ///< every node moves with the body (the far field too)
+    deforming,  ///< the walls move with the body, the far field stays, the volume blends between
+};
+
 /// Settings of the volume deformation and of its checks.
 struct DeformationOptions {
+    /// Rigid (default) or deforming body motion (docs/mesh-motion.md, "Deforming body motion").
+    BodyMotion body = BodyMotion::rigid;
+    /// Markers that move with the body in the deforming mode (the walls). Every marker named in
+    /// neither list is held fixed there (the far field).
+    std::vector<std::string> wall_markers;
+    /// Plane markers: in the deforming mode, and for control surfaces that touch them, their nodes
+    /// slide in the plane (displacement projected onto it). Each is checked to be plane at set-up.
+    std::vector<std::string> symmetry_markers;
+    /// Deforming mode: nodes within this distance [m] of the walls' bounding box move rigidly
+    /// (0: the default, min(box diagonal, fixed_radius / 4)).
+    double rigid_radius = 0.0;
+    /// Deforming mode: nodes at this distance [m] or more from the walls' bounding box do not move
+    /// (0: the default, the distance of the nearest fixed boundary node).
+    double fixed_radius = 0.0;
+    /// A symmetry marker's nodes must lie within this fraction of the diagonal of its bounding
+    /// box from the plane fitted to them.
+    double plane_tolerance = 1e-6;
     /// The greedy reduction stops when the interpolation of every candidate surface node is
     /// within this fraction of its shortest edge, for both fields of the surface.
     double surface_tolerance = 0.1;
@@ -109,6 +134,18 @@ struct ControlSurfaceInfo {
     double setup_seconds = 0.0;  ///< wall time of this surface's set-up
 };
 
+struct SymmetryPlanes;  // the symmetry markers' planes (mesh_motion.cpp)
+
+/// What the set-up of the deforming body motion found (for reports and tests).
+struct BodyMotionInfo {
+    int n_wall_nodes = 0;     ///< nodes of the wall markers (moving rigidly)
+    int n_sliding_nodes = 0;  ///< nodes on a symmetry marker that move (projected on the plane)
+    int n_fixed_nodes = 0;    ///< boundary nodes held fixed (far field)
+    int n_blended_nodes = 0;  ///< nodes between the two radii (0 < blend < 1)
+    double rigid_radius = 0.0, fixed_radius = 0.0;  ///< [m]
+    double setup_seconds = 0.0;
+};
+
 /// Node coordinates of the moving, deforming mesh along a motion.
 ///
 /// Set-up (constructor): for each control surface, its marker's nodes, the two surface fields
@@ -116,19 +153,28 @@ struct ControlSurfaceInfo {
 /// w the blend weight, 0 on the nodes shared with other markers), and their volume fields by
 /// inverse-distance weighting from a greedily reduced point set. Per step: the exact rotation
 /// by delta, sin(delta) m1 + (1 - cos(delta)) m2, for each surface, a check of the cells near the
-/// moving surfaces, then the rigid motion of every node.
+/// moving surfaces, then the rigid motion of every node. Deforming body motion: the deflected
+/// node y goes to y + b P (T + R y - y) (b its blend, 1 on the walls, 0 on the far field; P the
+/// projection onto its symmetry plane, identity elsewhere), and the check sees these coordinates.
 class MeshMotion {
 public:
     /// InputError (one line) for a marker that is not in the mesh, a hinge line off its surface,
     /// a control surface whose mode the motion lacks, a mode that deflects (by more than 1e-9 rad)
-    /// with no control surface, and for an invalid motion (aero::Motion::validate). The mesh must
-    /// be finalized.
+    /// with no control surface, and for an invalid motion (aero::Motion::validate); in the
+    /// deforming body motion also for a symmetry marker that is not plane, a wall node on a fixed
+    /// marker and radii that do not fit (docs/mesh-motion.md). The mesh must be finalized.
     MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacement placement,
                std::vector<ControlSurfaceSpec> surfaces, const DeformationOptions& options = {});
 
     [[nodiscard]] mesh::Index n_nodes() const { return static_cast<mesh::Index>(x0_.cols()); }
     [[nodiscard]] const aero::Motion& motion() const { return motion_; }
     [[nodiscard]] const std::vector<ControlSurfaceInfo>& info() const { return info_; }
+    [[nodiscard]] BodyMotion body_motion() const { return options_.body; }
+    /// The deforming body motion's set-up (zeros in the rigid mode).
+    [[nodiscard]] const BodyMotionInfo& body_info() const { return body_info_; }
+    /// Bytes held by this object's arrays (reference coordinates, mode fields, blend, sliding
+    /// projections, the checked cells).
+    [[nodiscard]] std::size_t memory_bytes() const;
     /// Wall time of the whole set-up [s].
     [[nodiscard]] double setup_seconds() const { return setup_seconds_; }
     /// Number of cells checked each step (those with a node that a control surface moves).
@@ -160,6 +206,11 @@ private:
         Eigen::Matrix3Xd m1, m2;         // their displacement fields per unit sin / (1 - cos)
     };
     void deform(const aero::MotionState& s, double scale, Eigen::Matrix3Xd& y) const;
+    /// The deforming mode's body motion of the deformed coordinates y, in place.
+    void blend_body(const RigidPose& p, Eigen::Matrix3Xd& y) const;
+    /// The coordinates the check looks at: the deformed mesh (rigid mode) or the moved one.
+    void checked_coordinates(const aero::MotionState& s, double scale, Eigen::Matrix3Xd& y) const;
+    void setup_body(const mesh::Mesh& mesh, const SymmetryPlanes& planes, std::vector<char>& moved);
     [[nodiscard]] long first_bad_cell(const Eigen::Matrix3Xd& y) const;
     void check(const aero::MotionState& s, const Eigen::Matrix3Xd& y, long step) const;
 
@@ -171,6 +222,12 @@ private:
     std::vector<Field> fields_;
     std::vector<ControlSurfaceInfo> info_;
     double setup_seconds_ = 0.0;
+    // Deforming body motion: the blend of each node (1 rigid, 0 fixed) and the projections of
+    // the sliding nodes onto their planes.
+    BodyMotionInfo body_info_;
+    std::vector<double> blend_;
+    std::vector<mesh::Index> slide_node_;
+    std::vector<Eigen::Matrix3d> slide_projection_;
     // Cells checked each step: type, nodes (CSR) and the volume floor of a sub-tetrahedron.
     std::vector<mesh::CellType> checked_type_;
     std::vector<mesh::Index> checked_cell_;
