@@ -132,12 +132,15 @@ struct Boundary {
     std::vector<double> h;         // shortest distance to a node sharing a cell [m]
 };
 
-Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x) {
+/// `sliding`: markers left out (their nodes count as interior unless on another marker).
+Boundary boundary_of(const mesh::Mesh& mesh, const Matrix3Xd& x,
+                     const std::vector<char>& sliding = {}) {
     const auto n = static_cast<std::size_t>(mesh.n_nodes());
     Boundary b;
     b.node_marker.assign(n, -1);
     for (Index f = 0; f < mesh.n_faces(); ++f) {
         const int m = mesh.face_marker(f);
+        if (!sliding.empty() && sliding[static_cast<std::size_t>(m)]) continue;
         for (const Index v : mesh.face(f)) {
             int& nm = b.node_marker[static_cast<std::size_t>(v)];
             if (nm == -1)
@@ -306,7 +309,7 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
         }
     }
 
-    const Boundary boundary = boundary_of(mesh, x0_);
+    const Boundary mesh_boundary = boundary_of(mesh, x0_);
     std::vector<char> moved(static_cast<std::size_t>(n), 0);
     for (const ControlSurfaceSpec& c : specs_) {
         const auto t_surface = Clock::now();
@@ -332,14 +335,11 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
                     }
         std::sort(nodes.begin(), nodes.end());
         Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-        std::vector<Vector3d> seam;
         for (const Index v : nodes) {
             lo = lo.cwiseMin(x0_.col(v));
             hi = hi.cwiseMax(x0_.col(v));
-            if (boundary.node_marker[static_cast<std::size_t>(v)] == -2) seam.push_back(x0_.col(v));
         }
         info.n_marker_nodes = static_cast<int>(nodes.size());
-        info.n_seam_nodes = static_cast<int>(seam.size());
 
         // Hinge line.
         const Vector3d a = c.hinge[0], b = c.hinge[1];
@@ -366,6 +366,40 @@ MeshMotion::MeshMotion(const mesh::Mesh& mesh, aero::Motion motion, MotionPlacem
                                          what, c.marker));
         info.chord = chord;
         info.hinge_distance = hinge_distance;
+
+        // Sliding planes: another marker whose nodes all lie in one plane normal to the hinge
+        // (the slab planes of a 2-D mesh). The rotation moves every point parallel to such a
+        // plane, so the surface's nodes on it are not held as seam nodes and the plane's nodes
+        // move with the volume, in the plane (docs/mesh-motion.md, "Sliding planes").
+        std::vector<char> sliding(static_cast<std::size_t>(mesh.n_markers()), 0);
+        {
+            std::vector<double> e_lo(sliding.size(), std::numeric_limits<double>::infinity());
+            std::vector<double> e_hi(sliding.size(), -std::numeric_limits<double>::infinity());
+            std::vector<Vector3d> b_lo(sliding.size(), Vector3d::Constant(e_lo[0]));
+            std::vector<Vector3d> b_hi(sliding.size(), Vector3d::Constant(e_hi[0]));
+            for (Index f = 0; f < mesh.n_faces(); ++f) {
+                const auto m = static_cast<std::size_t>(mesh.face_marker(f));
+                for (const Index v : mesh.face(f)) {
+                    const double s = e.dot(x0_.col(v));
+                    e_lo[m] = std::min(e_lo[m], s);
+                    e_hi[m] = std::max(e_hi[m], s);
+                    b_lo[m] = b_lo[m].cwiseMin(x0_.col(v));
+                    b_hi[m] = b_hi[m].cwiseMax(x0_.col(v));
+                }
+            }
+            for (std::size_t m = 0; m < sliding.size(); ++m)
+                sliding[m] = static_cast<int>(m) != marker && e_hi[m] >= e_lo[m] &&
+                             e_hi[m] - e_lo[m] <= 1e-9 * (b_hi[m] - b_lo[m]).norm();
+        }
+        const bool any_sliding =
+            std::any_of(sliding.begin(), sliding.end(), [](char c) { return c; });
+        const Boundary boundary = any_sliding ? boundary_of(mesh, x0_, sliding) : mesh_boundary;
+        info.n_sliding_markers =
+            static_cast<int>(std::count(sliding.begin(), sliding.end(), char{1}));
+        std::vector<Vector3d> seam;
+        for (const Index v : nodes)
+            if (boundary.node_marker[static_cast<std::size_t>(v)] == -2) seam.push_back(x0_.col(v));
+        info.n_seam_nodes = static_cast<int>(seam.size());
         const double hb = c.hinge_blend.value_or(options_.hinge_blend_chords * chord);
         const double eb = c.edge_blend.value_or(options_.edge_blend_chords * chord);
         const double cutoff = c.cutoff.value_or(options_.cutoff_chords * chord);

@@ -107,6 +107,9 @@ struct ControlSurfaceInfo {
     /// point cap was reached).
     double error_ratio = 0.0;
     double setup_seconds = 0.0;  ///< wall time of this surface's set-up
+    /// Markers that are planes normal to the hinge (2-D slab planes): the surface's nodes on them
+    /// are not seam nodes, and their nodes move with the volume, in their plane.
+    int n_sliding_markers = 0;
 };
 
 /// Node coordinates of the moving, deforming mesh along a motion.
