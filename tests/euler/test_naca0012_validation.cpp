@@ -30,21 +30,9 @@ namespace {
 
 using namespace manta;
 
-/// A copy of the finalized mesh `m` with every node rotated by +90 deg about the x axis,
-/// (x, y, z) -> (x, -z, y): a proper rotation, so cell orientations are kept.
+/// The slab turned z up ((x, y, z) -> (x, -z, y)), as test_meshes.hpp's turn_y_up_to_z_up.
 mesh::Mesh rotate_y_up_to_z_up(const mesh::Mesh& m) {
-    mesh::Mesh r(m.source());
-    r.reserve(m.n_nodes(), m.n_cells(), m.n_faces());
-    for (mesh::Index i = 0; i < m.n_nodes(); ++i) {
-        const Eigen::Vector3d x = m.node(i);
-        r.add_node({x.x(), -x.z(), x.y()});
-    }
-    for (mesh::Index c = 0; c < m.n_cells(); ++c) r.add_cell(m.cell_type(c), m.cell(c));
-    for (const std::string& name : m.markers()) r.add_marker(name);
-    for (mesh::Index f = 0; f < m.n_faces(); ++f)
-        r.add_face(m.face_type(f), m.face(f), m.face_marker(f));
-    r.finalize();
-    return r;
+    return test::turn_y_up_to_z_up(m);
 }
 
 struct Result {

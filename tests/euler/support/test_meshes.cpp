@@ -47,6 +47,14 @@ public:
     ~GmshSession() { gmsh::finalize(); }
 };
 
+/// Write the current gmsh model as MSH 4.1 ASCII to `file`.
+void write_msh(const fs::path& file) {
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 0);
+    gmsh::option::setNumber("Mesh.SaveAll", 0);
+    gmsh::write(file.string());
+}
+
 /// Write the current gmsh model as MSH 4.1 ASCII into a per-process scratch file, read it back
 /// with MANTA's reader under the name `source`, and delete the file.
 mesh::Mesh write_and_read(const std::string& source, const mesh::ReadOptions& options) {
@@ -54,10 +62,7 @@ mesh::Mesh write_and_read(const std::string& source, const mesh::ReadOptions& op
                          fmt::format("manta-test-meshes-{}", static_cast<long>(getpid()));
     fs::create_directories(dir);
     const fs::path file = dir / "mesh.msh";
-    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-    gmsh::option::setNumber("Mesh.Binary", 0);
-    gmsh::option::setNumber("Mesh.SaveAll", 0);
-    gmsh::write(file.string());
+    write_msh(file);
     const std::string text = mesh::read_maybe_gzipped(file);
     std::error_code ec;
     fs::remove_all(dir, ec);
@@ -100,7 +105,8 @@ const Section& section() {
 /// spaced inversely to the point density w(s) = 1 + 8 exp(-s / 0.03) + 3 exp(-(S - s) / 0.03)
 /// + a exp(-((x - x_shock) / 0.15)^2): leading- and trailing-edge clustering plus a band
 /// around the expected shock. Returns (x, y >= 0).
-std::vector<std::array<double, 2>> surface_points(int n, double a_shock, double x_shock) {
+std::vector<std::array<double, 2>> surface_points(int n, double a_shock, double x_shock,
+                                                  double x_snap = 0.0) {
     const Section& sec = section();
     const std::size_t m = sec.x.size();
     const double total = sec.s.back();
@@ -124,32 +130,30 @@ std::vector<std::array<double, 2>> surface_points(int n, double a_shock, double 
         pts.push_back({x, naca0012_half_thickness(x)});
     }
     pts.push_back({1.0, 0.0});
+    if (x_snap > 0.0) {
+        // The interior point nearest to x_snap moves onto it (the flap's hinge station).
+        std::size_t k = 1;
+        for (std::size_t i = 1; i + 1 < pts.size(); ++i)
+            if (std::abs(pts[i][0] - x_snap) < std::abs(pts[k][0] - x_snap)) k = i;
+        pts[k] = {x_snap, naca0012_half_thickness(x_snap)};
+    }
     return pts;
 }
 
-}  // namespace
-
-double naca0012_half_thickness(double x) {
-    if (!(x >= 0.0 && x <= 1.0))
-        throw InputError(
-            fmt::format("naca0012_half_thickness: x = {}; expected a chord fraction in [0, 1]", x));
-    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x -
-                  0.1036 * x * x * x * x);
-}
-
-double naca0012_perimeter() {
-    return 2.0 * section().s.back();
-}
-
-mesh::Mesh naca0012_slab(int level, double slab_thickness) {
+/// The gmsh model of the NACA 0012 of `naca0012_slab` (2-D, meshed), wall split at
+/// `flap_hinge` when it is in (0, 1).
+void naca0012_model(int level, double flap_hinge) {
     if (level < 0 || level > 2)
         throw InputError(fmt::format("naca0012_slab: level {}; expected 0, 1 or 2", level));
+    if (!(flap_hinge == 0.0 || (flap_hinge >= 0.05 && flap_hinge <= 0.95)))
+        throw InputError(fmt::format(
+            "naca0012_slab: flap hinge x/c = {}; expected 0 (no flap) or a value in [0.05, 0.95]",
+            flap_hinge));
     const double f = std::ldexp(1.0, -level);  // size factor
     const int n_side = 80 << level;            // intervals per surface
-    const auto upper = surface_points(n_side, 1.0, 0.6);
-    const auto lower = surface_points(n_side, 0.5, 0.4);
+    const auto upper = surface_points(n_side, 1.0, 0.6, flap_hinge);
+    const auto lower = surface_points(n_side, 0.5, 0.4, flap_hinge);
 
-    GmshSession gmsh_session("naca0012");
     namespace geo = gmsh::model::geo;
     // Closed polygon through the surface points: leading edge, upper surface to the trailing
     // edge, lower surface back. Each point carries its local spacing as mesh size.
@@ -197,13 +201,63 @@ mesh::Mesh naca0012_slab(int level, double slab_thickness) {
     field::setAsBackgroundMesh(2);
     gmsh::option::setNumber("Mesh.Algorithm", 6);  // Frontal-Delaunay: regular triangles
 
-    physical(1, wall, "airfoil");
+    if (flap_hinge > 0.0) {
+        std::vector<int> fixed, flap;
+        for (std::size_t i = 0; i < np; ++i) {
+            const double x_aft = std::min(ring[i][0], ring[(i + 1) % np][0]);
+            (x_aft >= flap_hinge ? flap : fixed).push_back(wall[i]);
+        }
+        physical(1, fixed, "airfoil");
+        physical(1, flap, "flap");
+    } else {
+        physical(1, wall, "airfoil");
+    }
     physical(1, far, "farfield");
     physical(2, {s}, "fluid");
     gmsh::model::mesh::generate(2);
+}
+
+}  // namespace
+
+double naca0012_half_thickness(double x) {
+    if (!(x >= 0.0 && x <= 1.0))
+        throw InputError(
+            fmt::format("naca0012_half_thickness: x = {}; expected a chord fraction in [0, 1]", x));
+    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x -
+                  0.1036 * x * x * x * x);
+}
+
+double naca0012_perimeter() {
+    return 2.0 * section().s.back();
+}
+
+mesh::Mesh naca0012_slab(int level, double slab_thickness, double flap_hinge) {
+    GmshSession gmsh_session("naca0012");
+    naca0012_model(level, flap_hinge);
     mesh::ReadOptions options;
     options.slab_thickness = slab_thickness;
     return write_and_read(fmt::format("naca0012_slab(level {})", level), options);
+}
+
+void write_naca0012_msh(int level, const std::filesystem::path& file, double flap_hinge) {
+    GmshSession gmsh_session("naca0012");
+    naca0012_model(level, flap_hinge);
+    write_msh(file);
+}
+
+mesh::Mesh turn_y_up_to_z_up(const mesh::Mesh& m) {
+    mesh::Mesh r(m.source());
+    r.reserve(m.n_nodes(), m.n_cells(), m.n_faces());
+    for (mesh::Index i = 0; i < m.n_nodes(); ++i) {
+        const Eigen::Vector3d x = m.node(i);
+        r.add_node({x.x(), -x.z(), x.y()});
+    }
+    for (mesh::Index c = 0; c < m.n_cells(); ++c) r.add_cell(m.cell_type(c), m.cell(c));
+    for (const std::string& name : m.markers()) r.add_marker(name);
+    for (mesh::Index f = 0; f < m.n_faces(); ++f)
+        r.add_face(m.face_type(f), m.face(f), m.face_marker(f));
+    r.finalize();
+    return r;
 }
 
 double bump_lower_wall(double x) {

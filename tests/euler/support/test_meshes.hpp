@@ -41,7 +41,23 @@ namespace manta::test {
 /// Level 1 halves every size (twice as fine per direction; 14 653 nodes per plane). Markers
 /// `airfoil`, `farfield`, `symmetry_back` (z = 0, normal -z) and `symmetry_front` (normal +z).
 /// InputError if `level` is not 0, 1 or 2.
-[[nodiscard]] mesh::Mesh naca0012_slab(int level, double slab_thickness = 1.0);
+///
+/// With `flap_hinge` (x/c in [0.05, 0.95]; 0: none) the surface point nearest to the hinge station
+/// on each side moves onto it, and the wall faces aft of it get their own marker `flap` (the rest
+/// stay `airfoil`): a trailing-edge flap for `control_surfaces:` (docs/mesh-motion.md). InputError
+/// for a hinge outside that range.
+[[nodiscard]] mesh::Mesh naca0012_slab(int level, double slab_thickness = 1.0,
+                                       double flap_hinge = 0.0);
+
+/// The 2-D mesh of `naca0012_slab(level, 1, flap_hinge)` written to `file` as MSH 4.1 ASCII, in
+/// the x-y plane (y up), for the CFD case driver (`mesh::read_mesh` extrudes it into the slab
+/// of thickness 1 m; configuration `mesh: {up: y}` turns it z up).
+void write_naca0012_msh(int level, const std::filesystem::path& file, double flap_hinge = 0.0);
+
+/// A copy of the finalized mesh `m` turned +90 deg about the x axis, (x, y, z) -> (x, -z, y):
+/// a slab in the x-y plane (y up) becomes one with z up spanning y in [-thickness, 0], as the
+/// CFD configuration's `mesh: {up: y}` turns it. A proper rotation: cell orientations are kept.
+[[nodiscard]] mesh::Mesh turn_y_up_to_z_up(const mesh::Mesh& m);
 
 /// Lower wall of the bump channel: y = 0.0625 exp(-25 x^2) (m).
 [[nodiscard]] double bump_lower_wall(double x);
