@@ -15,6 +15,7 @@
 #include "manta/core/frames.hpp"
 #include "manta/core/version.hpp"
 #include "manta/euler/case.hpp"
+#include "manta/euler/launched_source.hpp"
 #include "manta/euler/output.hpp"
 
 namespace manta::euler {
@@ -259,22 +260,7 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
                           solver.iteration_state().peak_log10_residual, solver.state()});
         if (cache_.size() > cache_size_) cache_.erase(cache_.begin());
     }
-    const ForceCoefficients& f = oc.forces;
-    aero::SourceResult r;
-    const Eigen::Vector3d F = core::body_from_geometry(Eigen::Vector3d(f.CFx, f.CFy, f.CFz));
-    const Eigen::Vector3d M = core::body_from_geometry(Eigen::Vector3d(f.CMx, f.CMy, f.CMz));
-    r.body.CX = F.x();
-    r.body.CY = F.y();
-    r.body.CZ = F.z();
-    r.body.Cl = M.x();
-    r.body.Cm = M.y();
-    r.body.Cn = M.z();
-    r.wind.CL = f.CL;
-    r.wind.CD = f.CD;
-    r.wind.CY = f.CY;
-    r.CD_induced = f.CD;
-    r.CD_profile = 0.0;
-    return r;
+    return source_result(oc.forces);
 }
 
 }  // namespace manta::euler
