@@ -24,6 +24,7 @@
 #include "manta/euler/launched_source.hpp"
 #include "manta/euler/source.hpp"
 #include "manta/flightdyn/atmosphere.hpp"
+#include "manta/meshgen/meshgen.hpp"
 #include "manta/tables/analytic_source.hpp"
 #include "manta/tables/campaign.hpp"
 #include "manta/tables/export.hpp"
@@ -178,9 +179,48 @@ nlohmann::json report_json(const tables::ScenarioReport& r) {
 /// The Euler source of a campaign: the mesh and the `manta cfd` configuration, set up as
 /// `manta cfd` sets up a case (`euler::EulerSource::from_files`); the flow condition comes from
 /// each sample.
+/// The mesh of an Euler source with `mesh: {model, level}`: OUT/mesh/<aircraft>_<model>_<level>.su2
+/// with its companion, generated from the aircraft file on the first run and reused while the
+/// stamp beside it (the aircraft file's text, model and level) is unchanged.
+std::filesystem::path campaign_mesh(const tables::SourceSpec& spec,
+                                    const std::filesystem::path& out) {
+    if (!std::filesystem::exists(spec.aircraft))
+        throw ConfigError(fmt::format(
+            "{}: aircraft file '{}' does not exist; expected the MANTA aircraft file to mesh",
+            spec.where, spec.aircraft.string()));
+    const std::filesystem::path dir = out / "mesh";
+    const std::filesystem::path mesh =
+        dir / fmt::format("{}_{}_{}.su2", spec.aircraft.stem().string(), spec.mesh_model,
+                          spec.mesh_level);
+    const std::filesystem::path stamp_file = std::filesystem::path(mesh.string() + ".stamp");
+    const std::string stamp = fmt::format(
+        "model {}\nlevel {}\nsize_factor {}\nmanta {}\n{}", spec.mesh_model, spec.mesh_level,
+        core::format_exact(spec.mesh_size_factor), core::version(), core::read_file(spec.aircraft));
+    const std::filesystem::path companion =
+        mesh.parent_path() / (mesh.stem().string() + ".mesh.yaml");
+    if (std::filesystem::exists(mesh) && std::filesystem::exists(companion) &&
+        std::filesystem::exists(stamp_file) && core::read_file(stamp_file) == stamp)
+        return mesh;
+    std::filesystem::create_directories(dir);
+    std::fprintf(stderr, "tables: meshing %s (%s model, %s level) into %s\n",
+                 spec.aircraft.string().c_str(), spec.mesh_model.c_str(), spec.mesh_level.c_str(),
+                 mesh.string().c_str());
+    const auto aircraft = aircraft::load_aircraft(spec.aircraft);
+    meshgen::MeshOptions opts;
+    opts.model = meshgen::parse_model(spec.mesh_model);
+    opts.level = meshgen::parse_level(spec.mesh_level);
+    opts.size_factor = spec.mesh_size_factor;
+    const auto r = meshgen::generate_mesh(aircraft, opts, mesh);
+    std::fprintf(stderr, "tables: mesh of %lld nodes in %.1f s\n", r.quality.nodes,
+                 r.seconds_total);
+    core::write_file_atomic(stamp_file, stamp);
+    return mesh;
+}
+
 std::unique_ptr<aero::AeroSource> make_euler_source(const tables::Campaign& campaign,
                                                     const std::filesystem::path& out) {
-    const tables::SourceSpec& spec = campaign.source;
+    tables::SourceSpec spec = campaign.source;
+    if (!spec.mesh_model.empty()) spec.mesh = campaign_mesh(spec, out);
     if (!std::filesystem::exists(spec.mesh))
         throw ConfigError(
             fmt::format("{}: mesh file '{}' does not exist; expected a mesh that "

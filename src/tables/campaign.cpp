@@ -184,7 +184,26 @@ SourceSpec read_source(ConfigMap& m, const std::filesystem::path& base) {
         return p.is_absolute() || base.empty() ? p : base / p;
     };
     if (s.type == SourceType::euler) {
-        s.mesh = resolve(m.string("mesh"));
+        const ConfigNode mesh_node = m.child("mesh");
+        if (mesh_node.is_map()) {
+            // The campaign meshes the aircraft file itself.
+            ConfigMap g(mesh_node);
+            s.mesh_model = g.choice_or("model", "half", {"half", "full"});
+            s.mesh_level = g.choice_or("level", "coarse", {"coarse", "medium", "fine"});
+            s.mesh_size_factor = g.number_or("size_factor", 1.0, NumberSpec::range(0.25, 8.0, "-"));
+            g.finish();
+            if (!m.has("aircraft"))
+                m.fail("mesh",
+                       "is a mesh to generate ({model, level}) but the source names no "
+                       "aircraft",
+                       "source.aircraft: the aircraft file to mesh, or mesh: a mesh file");
+            s.aircraft = resolve(m.string("aircraft"));
+        } else {
+            s.mesh = resolve(m.string("mesh"));
+            if (m.has("aircraft"))
+                m.fail("aircraft", "is given with a mesh file",
+                       "aircraft only with mesh: {model, level} (the campaign meshes it)");
+        }
         if (m.has("config")) s.cfd_config = resolve(m.string("config"));
         if (m.has("launcher")) {
             s.launcher = m.string("launcher");

@@ -28,6 +28,12 @@ struct SourceSpec {
     double strip_width = 0.04;       ///< vlm lattice: strip width / reference span
     bool viscous = true;             ///< vlm: add the viscous drag build-up
     std::filesystem::path mesh;      ///< euler: the mesh file, resolved like `aircraft`
+    /// euler with `mesh: {model, level}`: the campaign meshes `aircraft` itself (`manta mesh`'s
+    /// meshgen) into OUT/mesh/ before the first sample and reuses that mesh afterwards; `mesh`
+    /// is then empty until the driver sets it.
+    std::string mesh_model;            ///< "half" | "full"; empty: `mesh` is a file
+    std::string mesh_level;            ///< "coarse" | "medium" | "fine"
+    double mesh_size_factor = 1.0;     ///< every mesh size times this (quick looks, tests)
     std::filesystem::path cfd_config;  ///< euler: `manta cfd` configuration (empty: defaults)
     /// euler: the command each sample's `manta cfd` job is started through ("mpirun -np 4",
     /// "srun -n 64"; split into words as a shell would, without expansions); empty: every
