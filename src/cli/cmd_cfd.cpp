@@ -24,6 +24,7 @@ constexpr double deg = 3.14159265358979323846 / 180.0;
 struct CfdArgs {
     std::string mesh, config, out, initial;
     std::optional<double> mach, alpha_deg, beta_deg;
+    std::optional<double> elevator_deg, aileron_deg, rudder_deg;
     std::optional<int> max_iterations;
     std::optional<int> order;
     std::string motion;
@@ -46,6 +47,9 @@ int run_cfd(const CfdArgs& a) {
     in.mach = a.mach;
     if (a.alpha_deg) in.alpha = *a.alpha_deg * deg;
     if (a.beta_deg) in.beta = *a.beta_deg * deg;
+    if (a.elevator_deg) in.elevator = *a.elevator_deg * deg;
+    if (a.aileron_deg) in.aileron = *a.aileron_deg * deg;
+    if (a.rudder_deg) in.rudder = *a.rudder_deg * deg;
     in.max_iterations = a.max_iterations;
     in.order = a.order;
     in.restart = a.restart;
@@ -103,9 +107,14 @@ int run_cfd(const CfdArgs& a) {
                    oc.forces.CD, oc.forces.CMy, a.out);
     } else {
         const euler::FlowCondition& f = cfd.setup().flow;
-        fmt::print("{} ({} nodes, {} process{}): M {:g}, alpha {:g} deg, beta {:g} deg\n", a.mesh,
+        std::string deflected;
+        const auto& d = cfd.deflections();
+        const char* modes[] = {"elevator", "aileron", "rudder"};
+        for (std::size_t k = 0; k < d.size(); ++k)
+            if (d[k] != 0.0) deflected += fmt::format(", {} {:g} deg", modes[k], d[k] / deg);
+        fmt::print("{} ({} nodes, {} process{}): M {:g}, alpha {:g} deg, beta {:g} deg{}\n", a.mesh,
                    cfd.n_nodes(), comm.size(), comm.size() == 1 ? "" : "es", f.mach, f.alpha / deg,
-                   f.beta / deg);
+                   f.beta / deg, deflected);
         fmt::print("{} after {} iterations in {:.1f} s\n", oc.reason, oc.iterations, oc.wall_s);
         fmt::print(
             "CL {:.6f}  CD {:.6f}  CY {:.6f}  CMx {:.6f}  CMy {:.6f}  CMz {:.6f}  (area "
@@ -130,7 +139,9 @@ void add_cfd(CLI::App& app, Action& action) {
         "`mpirun -np N manta cfd ...` for N processes. A run started again with the same\n"
         "command continues from its restart file. With --motion: time-accurate along the\n"
         "motion (moving mesh, control surfaces from the configuration): coefficients.csv,\n"
-        "summary.json, .pvd time series, restart_unsteady.bin.");
+        "summary.json, .pvd time series, restart_unsteady.bin. --elevator-deg, --aileron-deg,\n"
+        "--rudder-deg deflect the control surfaces of the configuration or the mesh companion\n"
+        "(steady runs; the mesh deforms before the solve).");
     auto a = std::make_shared<CfdArgs>();
     cmd->add_option("--mesh", a->mesh, "Mesh file (.su2, .su2.gz, .msh, .cgns; docs/mesh.md)")
         ->required()
@@ -141,6 +152,22 @@ void add_cfd(CLI::App& app, Action& action) {
         ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
     cmd->add_option("--beta-deg", a->beta_deg, "Sideslip [deg], wind from the right (default 0)")
         ->check(real_in(-range::max_angle_deg, range::max_angle_deg, "deg"));
+    // Deflections: each control surface (`control_surfaces:` of the configuration or the mesh
+    // companion) turns by gain times its mode's deflection (docs/euler.md, "Control
+    // deflections"); beyond 45 deg the deformation of the volume is far outside its design.
+    constexpr double max_deflection_deg = 45.0;
+    cmd->add_option("--elevator-deg", a->elevator_deg,
+                    "Elevator deflection [deg] (default 0; steady runs): the control surfaces "
+                    "of mode elevator turn by gain times it about their hinges")
+        ->check(real_in(-max_deflection_deg, max_deflection_deg, "deg"));
+    cmd->add_option("--aileron-deg", a->aileron_deg,
+                    "Aileron deflection [deg] (default 0; steady runs): the control surfaces "
+                    "of mode aileron turn by gain times it (the gains' signs give the sides)")
+        ->check(real_in(-max_deflection_deg, max_deflection_deg, "deg"));
+    cmd->add_option("--rudder-deg", a->rudder_deg,
+                    "Rudder deflection [deg] (default 0; steady runs): the control surfaces of "
+                    "mode rudder turn by gain times it about their hinges")
+        ->check(real_in(-max_deflection_deg, max_deflection_deg, "deg"));
     cmd->add_option("--config", a->config,
                     "Configuration YAML: marker roles, reference values, numerics "
                     "(docs/formats.md#cfd-configuration); the mesh's companion file X.mesh.yaml "

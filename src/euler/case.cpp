@@ -12,6 +12,7 @@
 #include <ctime>
 #include <exception>
 #include <fstream>
+#include <limits>
 #include <span>
 
 #include "detail/binary_io.hpp"
@@ -21,6 +22,7 @@
 #include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/core/version.hpp"
+#include "manta/euler/deflection.hpp"
 #include "manta/euler/output.hpp"
 #include "manta/euler/unsteady.hpp"
 #include "manta/mesh/dual.hpp"
@@ -63,6 +65,40 @@ std::uint64_t fnv1a(std::string_view text) {
 using detail::BinIn;
 using detail::BinOut;
 constexpr char unsteady_magic[9] = "MANTAUN1";
+
+/// The restart fingerprint's part for the control deflections `d` [rad] (none when all are 0,
+/// so that an undeflected run keeps the fingerprint of runs before deflections existed).
+std::string deflection_fingerprint(const ModeDeflections& d) {
+    if (!deflects(d)) return {};
+    return fmt::format(" deflections_rad={},{},{}", core::format_exact(d[0]),
+                       core::format_exact(d[1]), core::format_exact(d[2]));
+}
+constexpr std::string_view deflection_key = " deflections_rad=";
+
+/// The mesh's part of a restart fingerprint (without `deflection_fingerprint`).
+std::string mesh_part(const std::string& fingerprint) {
+    return fingerprint.substr(0, fingerprint.find(deflection_key));
+}
+
+/// The deflections a restart fingerprint names, for messages ("elevator 5 deg, aileron 0 deg,
+/// rudder 0 deg", or "no deflection").
+std::string deflection_words(const std::string& fingerprint) {
+    const std::size_t at = fingerprint.find(deflection_key);
+    if (at == std::string::npos) return "no deflection";
+    std::string rest = fingerprint.substr(at + deflection_key.size());
+    std::string text;
+    for (std::size_t k = 0; k < deflection_modes.size(); ++k) {
+        const std::size_t comma = rest.find(',');
+        double v = std::numeric_limits<double>::quiet_NaN();
+        try {
+            v = std::stod(rest.substr(0, comma));
+        } catch (const std::exception&) {
+        }
+        text += fmt::format("{}{} {:.6g} deg", k ? ", " : "", deflection_modes[k], v / deg);
+        rest = comma == std::string::npos ? std::string() : rest.substr(comma + 1);
+    }
+    return text;
+}
 
 /// The .pvd collection of the VTU files written so far.
 std::string pvd_text(const std::vector<std::pair<double, std::string>>& files) {
@@ -226,6 +262,12 @@ struct CfdCase::Impl {
     std::unique_ptr<SteadySolver> solver;
     std::filesystem::path restart_file;
     std::string fingerprint;
+    // Steady control deflections [rad] (elevator, aileron, rudder), how messages name them, the
+    // undeflected mesh's fingerprint and the deformation's wall time.
+    ModeDeflections deflection{0.0, 0.0, 0.0};
+    DeflectionNaming deflection_naming;
+    std::string mesh_fingerprint_text;
+    double deflection_s = 0;
     int resumed_from = -1;
     std::vector<std::string> history;  ///< rank 0: history.csv's rows so far
 
@@ -269,6 +311,9 @@ struct CfdCase::Impl {
     }
 
     void prepare();
+    /// Deform the mesh by `deflection` (collective): rank 0 deforms the whole mesh and checks
+    /// it, every process takes its nodes' coordinates and updates its dual metrics.
+    void deflect();
     void resume_or_warm_start();
     void write_restart();
     void prepare_motion();
@@ -494,6 +539,28 @@ void CfdCase::Impl::prepare() {
     } else if (in.dt || in.max_steps) {
         throw InputError("manta cfd: --dt and --max-steps need --motion");
     }
+    const std::array<const std::optional<double>*, 3> given{&in.elevator, &in.aileron, &in.rudder};
+    deflection_naming.who = "manta cfd";
+    deflection_naming.names = {"--elevator-deg", "--aileron-deg", "--rudder-deg"};
+    deflection_naming.unit = "";
+    deflection_naming.config =
+        in.config.empty() && cfg.companion.empty()
+            ? std::string("the default configuration (no --config, no mesh companion)")
+        : in.config.empty()     ? "the mesh companion " + cfg.companion.string()
+        : cfg.companion.empty() ? in.config.string()
+                                : fmt::format("{} with the mesh companion {}", in.config.string(),
+                                              cfg.companion.string());
+    for (std::size_t k = 0; k < given.size(); ++k) {
+        if (!*given[k]) continue;
+        if (unsteady)
+            throw InputError(fmt::format(
+                "manta cfd: {} {:.6g} is not taken with --motion; the control surfaces deflect "
+                "by the motion file's mode columns (mode_{}) there",
+                deflection_naming.names[k], **given[k] / deg, deflection_modes[k]));
+        deflection[k] = **given[k];
+    }
+    // A deflection of a mode no surface has, or one not finite: refused before the mesh is read.
+    (void)surface_deflections(cfg.control_surfaces, deflection, deflection_naming);
 
     // Rank 0 writes the run folder: it checks and locks it before the mesh is read (a second
     // `manta cfd` on the same folder stops here with exit 2; every process stops with it).
@@ -533,6 +600,13 @@ void CfdCase::Impl::prepare() {
 
     const Domain domain{&local.mesh, &dual, local.n_owned, local.halo.get()};
     fingerprint = mesh_fingerprint(local.mesh, local.global_node, local.n_owned, comm);
+    mesh_fingerprint_text = fingerprint;
+    if (!unsteady && deflects(deflection)) {
+        // The fingerprint is the undeflected mesh's and the deflections': a warm start
+        // (--initial) may come from another deflection, a resumed run not.
+        deflect();
+        fingerprint += deflection_fingerprint(deflection);
+    }
     if (unsteady) {
         // The deformation's set-up needs the whole mesh: rank 0 moves the global mesh and every
         // process takes its nodes' coordinates (`coordinates`).
@@ -570,10 +644,57 @@ void CfdCase::Impl::prepare() {
     resume_or_warm_start();
 }
 
+void CfdCase::Impl::deflect() {
+    const auto t0 = clock::now();
+    std::exception_ptr err;
+    if (root) {
+        try {
+            mesh::Mesh& whole = comm.size() == 1 ? local.mesh : *global;
+            const std::unique_ptr<meshmotion::MeshMotion> motion =
+                deflection_motion(whole, setup.roles, setup.reference.moment_point,
+                                  cfg.control_surfaces, deflection_naming.config);
+            const std::span<const mesh::Index> numbers(file_node);
+            if (comm.size() == 1) {
+                deflect_mesh(local.mesh, dual, motion.get(), cfg.control_surfaces, deflection,
+                             deflection_naming, numbers);
+            } else {
+                mesh::DualMetrics whole_dual = mesh::compute_dual_metrics(whole);
+                deflect_mesh(whole, whole_dual, motion.get(), cfg.control_surfaces, deflection,
+                             deflection_naming, numbers);
+            }
+        } catch (...) {
+            err = std::current_exception();
+        }
+    }
+    parallel::rethrow_root_error(err, comm);
+    if (comm.size() > 1) {
+        // Rank 0's deformed coordinates to every process, which takes its nodes'.
+        const auto n = static_cast<std::size_t>(local.n_global_nodes);
+        std::vector<double> xg(3 * n, 0.0);
+        if (root) std::copy(global->coordinates().begin(), global->coordinates().end(), xg.begin());
+        comm.sum(std::span<double>(xg));
+        std::vector<double> x(3 * static_cast<std::size_t>(local.mesh.n_nodes()));
+        for (std::size_t i = 0; i < local.global_node.size(); ++i) {
+            const auto g = static_cast<std::size_t>(local.global_node[i]);
+            for (std::size_t k = 0; k < 3; ++k) x[3 * i + k] = xg[3 * g + k];
+        }
+        local.mesh.set_coordinates(x);
+        mesh::update_dual_metrics(local.mesh, dual);
+    }
+    deflection_s = seconds_since(t0);
+}
+
 void CfdCase::Impl::resume_or_warm_start() {
     // Continue from this folder's restart file, or warm-start from another run's.
     if (std::filesystem::exists(restart_file) && !in.restart) {
         const RestartData r = read_restart(restart_file, local.n_global_nodes);
+        if (r.fingerprint != fingerprint && mesh_part(r.fingerprint) == mesh_fingerprint_text)
+            throw InputError(fmt::format(
+                "{}: this restart file belongs to another control deflection ({}; this run: {}); "
+                "run with --restart to start over, or point --initial at it from a new --out "
+                "folder",
+                restart_file.string(), deflection_words(r.fingerprint),
+                deflection_words(fingerprint)));
         if (r.fingerprint != fingerprint || r.mach != setup.flow.mach ||
             r.alpha != setup.flow.alpha || r.beta != setup.flow.beta)
             throw InputError(fmt::format(
@@ -604,11 +725,12 @@ void CfdCase::Impl::resume_or_warm_start() {
         }
     } else if (!in.initial.empty()) {
         const RestartData r = read_restart(in.initial, local.n_global_nodes);
-        if (r.fingerprint != fingerprint)
+        // A solution of another control deflection on the same mesh may start this one.
+        if (mesh_part(r.fingerprint) != mesh_fingerprint_text)
             throw InputError(
                 fmt::format("{}: the initial solution was computed on another mesh "
                             "({}; this mesh: {})",
-                            in.initial.string(), r.fingerprint, fingerprint));
+                            in.initial.string(), mesh_part(r.fingerprint), mesh_fingerprint_text));
         // The residual drop counts from the peak of the run that computed the initial solution.
         solver->warm_start(local_state(r.U), r.state.peak_log10_residual);
     }
@@ -658,6 +780,9 @@ const CaseSetup& CfdCase::setup() const noexcept {
 }
 const CfdConfig& CfdCase::config() const noexcept {
     return impl_->cfg;
+}
+const std::array<double, 3>& CfdCase::deflections() const noexcept {
+    return impl_->deflection;
 }
 int CfdCase::resumed_from() const noexcept {
     return impl_->resumed_from;
@@ -958,6 +1083,22 @@ CaseResult CfdCase::run(const Progress& progress) {
                       {"moment_point",
                        {setup.reference.moment_point.x(), setup.reference.moment_point.y(),
                         setup.reference.moment_point.z()}}};
+    j["deflections_deg"] = {{"elevator", c.deflection[0] / deg},
+                            {"aileron", c.deflection[1] / deg},
+                            {"rudder", c.deflection[2] / deg}};
+    if (deflects(c.deflection)) {
+        // Each control surface's own deflection (gain times its mode's).
+        const std::vector<double> delta =
+            surface_deflections(c.cfg.control_surfaces, c.deflection, c.deflection_naming);
+        nlohmann::json surfaces = nlohmann::json::array();
+        for (std::size_t k = 0; k < delta.size(); ++k)
+            surfaces.push_back({{"marker", c.cfg.control_surfaces[k].marker},
+                                {"mode", c.cfg.control_surfaces[k].mode},
+                                {"gain", c.cfg.control_surfaces[k].gain},
+                                {"deflection_deg", delta[k] / deg}});
+        j["control_surfaces"] = std::move(surfaces);
+        j["deflection_time_s"] = c.deflection_s;
+    }
     j["coefficients"] = to_json(oc.forces);
     j["converged"] = oc.converged;
     j["reason"] = oc.reason;

@@ -15,6 +15,7 @@
 #include "manta/core/frames.hpp"
 #include "manta/core/version.hpp"
 #include "manta/euler/case.hpp"
+#include "manta/euler/deflection.hpp"
 #include "manta/euler/launched_source.hpp"
 #include "manta/euler/output.hpp"
 
@@ -23,20 +24,6 @@ namespace manta::euler {
 namespace {
 
 constexpr double deg_per_rad = 57.29577951308232;
-
-/// The motion MeshMotion is built with: two samples of zeros, one mode column per mode of the
-/// surfaces (elevator, aileron and rudder always).
-aero::Motion still_motion(const std::vector<meshmotion::ControlSurfaceSpec>& surfaces) {
-    aero::Motion m;
-    m.t = {0.0, 1.0};
-    for (auto& c : m.position) c = {0.0, 0.0};
-    for (auto& c : m.angles) c = {0.0, 0.0};
-    std::vector<std::string> names{"elevator", "aileron", "rudder"};
-    for (const auto& s : surfaces)
-        if (std::find(names.begin(), names.end(), s.mode) == names.end()) names.push_back(s.mode);
-    for (auto& n : names) m.add_mode(n, {0.0, 0.0});
-    return m;
-}
 
 }  // namespace
 
@@ -87,13 +74,12 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label,
                                     c.hinge_tolerance.value_or(-1), c.hinge_blend.value_or(-1),
                                     c.edge_blend.value_or(-1), c.cutoff.value_or(-1));
     fingerprint_ += "]";
-    if (!surfaces_.empty()) {
-        meshmotion::MotionPlacement placement;
-        placement.reference_point = r.moment_point;
-        placement.motion_source = config_label_;
-        motion_ = std::make_unique<meshmotion::MeshMotion>(mesh_, still_motion(surfaces_),
-                                                           placement, surfaces_);
-    }
+    // Deflections slide on the symmetry planes (deflection.hpp); sources before that held the
+    // planes' nodes near a surface as fixed boundary nodes.
+    if (!surfaces_.empty() && std::find(setup_.roles.begin(), setup_.roles.end(),
+                                        BoundaryKind::symmetry) != setup_.roles.end())
+        fingerprint_ += " deflection=sliding-planes";
+    motion_ = deflection_motion(mesh_, setup_.roles, r.moment_point, surfaces_, config_label_);
 }
 
 std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path& mesh,
@@ -131,50 +117,18 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
             q.alpha_dot_hat, q.beta_dot_hat));
     const std::array<double, 3> rates{q.p_hat, q.q_hat, q.r_hat};
     const std::array<double, 3> deflection{q.elevator, q.aileron, q.rudder};
-    static constexpr std::array<const char*, 3> mode_names{"elevator", "aileron", "rudder"};
-
-    // Control deflections: each surface by gain times its mode's deflection.
-    std::vector<double> delta(surfaces_.size(), 0.0);
-    bool deflected = false;
-    for (std::size_t k = 0; k < 3; ++k) {
-        if (deflection[k] == 0.0) continue;
-        if (!std::isfinite(deflection[k]))
-            throw InputError(fmt::format("euler source: {} deflection {}; expected a finite angle",
-                                         mode_names[k], deflection[k]));
-        bool found = false;
-        for (std::size_t s = 0; s < surfaces_.size(); ++s)
-            if (surfaces_[s].mode == mode_names[k]) {
-                delta[s] = surfaces_[s].gain * deflection[k];
-                found = true;
-            }
-        if (!found)
-            throw InputError(fmt::format(
-                "euler source: the query deflects the {} by {:.4g} deg, but {} has no control "
-                "surface of mode '{}'; expected a control_surfaces entry with mode: {}",
-                mode_names[k], deflection[k] * deg_per_rad, config_label_, mode_names[k],
-                mode_names[k]));
-        deflected = true;
-    }
-    // The deflected geometry: this evaluation's own coordinates and metrics.
+    // Control deflections: each surface by gain times its mode's deflection, on this
+    // evaluation's own coordinates and metrics (deflection.hpp).
+    DeflectionNaming naming;
+    naming.names = {"elevator deflection", "aileron deflection", "rudder deflection"};
+    naming.config = config_label_;
+    const bool deflected = deflects(deflection);
     std::optional<mesh::Mesh> own_mesh;
     std::optional<mesh::DualMetrics> own_dual;
     if (deflected) {
-        Eigen::Matrix3Xd x;
-        motion_->deformed(delta, x);
         own_mesh.emplace(mesh_);
-        own_mesh->set_coordinates(
-            std::span<const double>(x.data(), static_cast<std::size_t>(x.size())));
         own_dual.emplace(dual_);
-        mesh::update_dual_metrics(*own_mesh, *own_dual);
-        const auto& v = own_dual->dual_volumes;
-        const auto bad = std::min_element(v.begin(), v.end());
-        if (bad != v.end() && !(*bad > 0.0))
-            throw InputError(fmt::format(
-                "euler source: deflections elevator {:.4g}, aileron {:.4g}, rudder {:.4g} deg "
-                "fold the mesh at node {} (dual volume {:.3g} m^3); expected deflections the "
-                "control surfaces of {} can take",
-                q.elevator * deg_per_rad, q.aileron * deg_per_rad, q.rudder * deg_per_rad,
-                bad - v.begin(), *bad, config_label_));
+        deflect_mesh(*own_mesh, *own_dual, motion_.get(), surfaces_, deflection, naming);
     }
     const mesh::Mesh& m = deflected ? *own_mesh : mesh_;
     const mesh::DualMetrics& dual = deflected ? *own_dual : dual_;

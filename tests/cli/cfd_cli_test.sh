@@ -251,6 +251,56 @@ PY
     if cmp -s "$work/u6_before.csv" "$work/u6/coefficients.csv"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: refused restart changed coefficients.csv"; fi
     check "deforming motion, 2 steps" 0 "$manta" cfd --mesh "$ct5" --motion "$work/pitch.csv" --config "$work/deform.yaml" --out "$work/u7" --max-steps 2
     contains "deforming summary" "$work/u7/summary.json" '"mode": "deforming"'
+    # Steady control deflections (--elevator-deg, --aileron-deg, --rudder-deg) with flap.yaml's
+    # whole aerofoil as the elevator about its quarter chord (sliding on the slab's planes): the
+    # trailing edge in surface.csv turned by the deflection, summary.json's deflections_deg, the
+    # same deformed geometry on 2 processes, a restart of another deflection refused, and bad
+    # input (a mode no surface has, NaN, beyond 45 deg, a fold, with --motion) one-line errors.
+    scfd=("$manta" cfd --mesh "$ct5" --config "$work/flap.yaml" --mach 0.5 --max-iterations 2)
+    check "cfd undeflected" 0 "${scfd[@]}" --out "$work/d0"
+    check "cfd --elevator-deg 2" 0 "${scfd[@]}" --elevator-deg 2 --out "$work/d2" --json
+    contains "deflection in the summary" "$work/out.txt" '"deflections_deg"'
+    if python3 - "$work/d0/surface.csv" "$work/d2/surface.csv" "$work/d2/summary.json" <<'PY'
+import csv, json, math, sys
+a, b = ({r["node"]: r for r in csv.DictReader(open(f)) if r["marker"] == "airfoil"} for f in sys.argv[1:3])
+te = max(a, key=lambda n: float(a[n]["x"]))  # trailing edge, 0.75 chord aft of the hinge
+x0, z0 = float(a[te]["x"]), float(a[te]["z"])
+x1, z1 = float(b[te]["x"]), float(b[te]["z"])
+turned = math.degrees(math.atan2(z0 - z1, x1 - 0.25))  # trailing edge down: z decreases
+print(f"--elevator-deg 2: trailing edge turned by {turned:.6f} deg")
+assert abs(turned - 2.0) < 1e-6, turned
+j = json.load(open(sys.argv[3]))
+assert j["deflections_deg"] == {"elevator": 2.0, "aileron": 0.0, "rudder": 0.0}, j["deflections_deg"]
+assert j["control_surfaces"][0]["marker"] == "airfoil", j["control_surfaces"]
+PY
+    then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: deflected geometry or summary"; fi
+    check "restart of another deflection" 2 "${scfd[@]}" --elevator-deg 3 --out "$work/d2"
+    one_line "another deflection: one line" "$work/err.txt"
+    contains "another deflection names both" "$work/err.txt" "another control deflection \(elevator 2 deg.*this run: elevator 3 deg"
+    if [ -n "$mpiexec" ]; then
+        check "cfd --elevator-deg 2, 2 processes" 0 "$mpiexec" "${mpiflags[@]}" -np 2 "${scfd[@]}" --elevator-deg 2 --out "$work/d2p"
+        if python3 - "$work/d2/surface.csv" "$work/d2p/surface.csv" <<'PY'
+import csv, sys
+a, b = ({r["node"]: (r["x"], r["y"], r["z"]) for r in csv.DictReader(open(f))} for f in sys.argv[1:3])
+assert a == b, "the deformed surfaces of 1 and 2 processes differ"
+PY
+        then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: deflected geometry on 2 processes"; fi
+    fi
+    bad_deflection() {  # bad_deflection NAME PATTERN ARGS...
+        local name=$1 pattern=$2; shift 2
+        check "$name" 2 "$manta" cfd --mesh "$ct5" --mach 0.5 --out "$work/bad" "$@"
+        contains "$name: says what" "$work/err.txt" "$pattern"
+    }
+    bad_deflection "rudder without a surface" "^manta: error: manta cfd: --rudder-deg 1: .*flap.yaml has no control surface of mode 'rudder' \(the modes of its control surfaces: elevator\)" --config "$work/flap.yaml" --rudder-deg 1
+    one_line "rudder without a surface: one line" "$work/err.txt"
+    bad_deflection "deflection NaN" "--aileron-deg: value 'nan' is not a finite number" --config "$work/flap.yaml" --aileron-deg nan
+    bad_deflection "deflection beyond 45 deg" "--elevator-deg: value '46' is outside the range; expected a number in \[-45, 45\] deg" --config "$work/flap.yaml" --elevator-deg 46
+    sed 's/hinge: \[\[0.25, -1, 0\], \[0.25, 0, 0\]\]/&, cutoff: 0.05/' "$work/flap.yaml" > "$work/tightflap.yaml"
+    bad_deflection "deflection that folds" "--elevator-deg 45 folds the mesh at node [0-9]+ \(dual volume -?[0-9.e-]+ m\^3\)" --config "$work/tightflap.yaml" --elevator-deg 45
+    one_line "deflection that folds: one line" "$work/err.txt"
+    check "deflection with --motion" 2 "$manta" cfd --mesh "$ct5" --config "$work/flap.yaml" --motion "$work/pitch.csv" --elevator-deg 2 --out "$work/bad"
+    contains "deflection with --motion: says what" "$work/err.txt" "--elevator-deg 2 is not taken with --motion; .*mode columns"
+    one_line "deflection with --motion: one line" "$work/err.txt"
     if [ -n "$mpiexec" ]; then
         # 1 and 2 processes: the same history to the inner tolerance (3 steps; the inner
         # iterations reach 1.6-3 orders here, so the processes' block-Jacobi preconditioners

@@ -16,6 +16,7 @@
 /// `unsteady.output_every` steps as .pvd time series, and restart_unsteady.bin
 /// (docs/formats.md#unsteady-cfd-run-folder).
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -47,6 +48,11 @@ struct CaseInputs {
     std::optional<int> max_iterations;  ///< overrides solver.max_iterations
     std::optional<int> order;           ///< overrides numerics.order
     bool restart = false;               ///< start over, ignoring the run folder's restart file
+    /// Steady runs: control deflections [rad] of the modes elevator, aileron and rudder
+    /// (deflection.hpp): each control surface of the configuration or the mesh companion turns by
+    /// gain times its mode's deflection and the mesh deforms with it before the solve. Not
+    /// taken with a motion (its mode columns deflect the surfaces there).
+    std::optional<double> elevator, aileron, rudder;
     /// Motion file (docs/formats.md#motion-file): a time-accurate run along it.
     std::filesystem::path motion;
     std::optional<double> dt;      ///< physical time step [s]; default the motion's spacing
@@ -150,7 +156,11 @@ public:
     /// renumber the mesh (rank 0), distribute it, set up the solver and resume from the run
     /// folder's restart file (InputError when it belongs to another mesh or flow condition)
     /// unless `restart`, or warm-start from `initial` (InputError when computed on another
-    /// mesh). Every process throws rank 0's error.
+    /// mesh). With control deflections (`CaseInputs::elevator`, ...) rank 0 deforms the whole
+    /// mesh by the configuration's control surfaces (deflection.hpp; InputError naming the
+    /// option and value for a mode no surface has, a value that is not finite, a fold) and
+    /// every process takes its nodes' deformed coordinates; the restart file of another
+    /// deflection is refused (InputError). Every process throws rank 0's error.
     CfdCase(CaseInputs inputs, const parallel::Communicator& comm);
     ~CfdCase();
     CfdCase(const CfdCase&) = delete;
@@ -167,6 +177,9 @@ public:
     [[nodiscard]] const CfdConfig& config() const noexcept;
     /// The iteration the run resumed from (-1: not resumed).
     [[nodiscard]] int resumed_from() const noexcept;
+    /// Steady runs: the control deflections the mesh was deformed by [rad] (elevator, aileron,
+    /// rudder; zeros when none).
+    [[nodiscard]] const std::array<double, 3>& deflections() const noexcept;
     /// Nodes of the whole mesh.
     [[nodiscard]] std::int64_t n_nodes() const noexcept;
     /// The steady solver (partition-local); a time-accurate case has none (InputError).
