@@ -3,7 +3,9 @@
 /// Forward-mode automatic differentiation scalars of the optimal-control module.
 ///
 /// `Fwd<V, N>` carries a value of type V and up to N directional derivatives of type V (the
-/// number in use is set at run time). With V = double it gives exact first derivatives
+/// number in use is set at run time); `Fwd<V, kDynamic>` carries any number, on the heap (the
+/// transcription's fallback for problems with more than kMaxDirections local variables). With V =
+/// double it gives exact first derivatives
 /// (`Ad1`); nested, Fwd<Fwd<double>> gives exact second derivatives (`Ad2`, forward over
 /// forward). Every evaluation recomputes value and derivatives from scratch, so a branch taken
 /// on `core::value_of(x)` (table cell, atmosphere layer) is followed at each call: there is no
@@ -18,6 +20,8 @@
 #include <array>
 #include <cmath>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace manta::optimal {
 
@@ -25,10 +29,31 @@ namespace manta::optimal {
 /// collocation node, or of the boundary function).
 inline constexpr int kMaxDirections = 40;
 
+/// Number of directions of the run-time-sized AD scalars (`Fwd<V, kDynamic>`, `Hyper<kDynamic>`):
+/// storage on the heap, sized to the directions in use.
+inline constexpr int kDynamic = -1;
+
 template <class V, int N>
 class Fwd;
 
 namespace detail {
+/// Storage of N derivatives: a fixed array (only the first n in use), or for N = kDynamic a
+/// vector sized to n. `resize` keeps nothing (callers overwrite every entry in use).
+template <class V, int N>
+struct DirectionStore {
+    std::array<V, N> a;
+    void resize(int /*n*/) noexcept {}
+    V& operator[](int i) noexcept { return a[static_cast<std::size_t>(i)]; }
+    const V& operator[](int i) const noexcept { return a[static_cast<std::size_t>(i)]; }
+};
+template <class V>
+struct DirectionStore<V, kDynamic> {
+    std::vector<V> a;
+    void resize(int n) { a.resize(static_cast<std::size_t>(n)); }
+    V& operator[](int i) noexcept { return a[static_cast<std::size_t>(i)]; }
+    const V& operator[](int i) const noexcept { return a[static_cast<std::size_t>(i)]; }
+};
+
 template <class T>
 struct is_fwd : std::false_type {};
 template <class V, int N>
@@ -61,14 +86,25 @@ public:
     /// A constant from a value of the inner type (nested use).
     explicit Fwd(const V& v) requires(!std::is_same_v<V, double>) : v_(v) {}
     Fwd(const Fwd& o) : v_(o.v_), n_(o.n_) {
+        d_.resize(n_);
         for (int i = 0; i < n_; ++i) d_[i] = o.d_[i];
     }
     Fwd& operator=(const Fwd& o) {
         if (this != &o) {
             v_ = o.v_;
             n_ = o.n_;
+            d_.resize(n_);
             for (int i = 0; i < n_; ++i) d_[i] = o.d_[i];
         }
+        return *this;
+    }
+    /// Moves (run-time-sized storage only: a fixed array is copied over the directions in use).
+    Fwd(Fwd&& o) noexcept requires(N == kDynamic)
+        : v_(std::move(o.v_)), n_(o.n_), d_(std::move(o.d_)) {}
+    Fwd& operator=(Fwd&& o) noexcept requires(N == kDynamic) {
+        v_ = std::move(o.v_);
+        n_ = o.n_;
+        d_ = std::move(o.d_);
         return *this;
     }
     ~Fwd() = default;
@@ -276,7 +312,7 @@ public:
     friend bool isnan(const Fwd& a) { return std::isnan(primal(a)); }
 
 private:
-    Fwd(const V& v, int n) : v_(v), n_(n) {}
+    Fwd(const V& v, int n) : v_(v), n_(n) { d_.resize(n); }
 
     /// Result with value `val` and derivatives da·a.d + db·b.d.
     static Fwd combine(const Fwd& a, const Fwd& b, const V& val, const V& da, const V& db) {
@@ -311,13 +347,15 @@ private:
 
     V v_{};
     int n_ = 0;
-    std::array<V, N> d_;  // only [0, n_) is meaningful
+    detail::DirectionStore<V, N> d_;  // only [0, n_) is meaningful
 };
 
 /// First-order AD scalar (exact gradients and Jacobians).
 using Ad1 = Fwd<double, kMaxDirections>;
 /// Second-order AD scalar (forward over forward: exact Hessians).
 using Ad2 = Fwd<Ad1, kMaxDirections>;
+/// First-order AD scalar with any number of directions (heap storage).
+using AdDyn1 = Fwd<double, kDynamic>;
 
 }  // namespace manta::optimal
 

@@ -10,12 +10,16 @@
 ///
 /// Like `Fwd`, it records nothing between evaluations (branches follow the plain value), mixes
 /// with `double` constants, and works in Eigen matrices (NumTraits below). Used for the
-/// Hessians of the transcription (model.hpp).
+/// Hessians of the transcription (model.hpp). `Hyper<kDynamic>` (ad.hpp) sizes its storage to
+/// the directions in use, on the heap: the fallback beyond kMaxDirections local variables.
 
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
 #include <type_traits>
+#include <utility>
+
+#include "manta/optimal/ad.hpp"
 
 namespace manta::optimal {
 
@@ -40,6 +44,16 @@ public:
             n_ = o.n_;
             copy_from(o);
         }
+        return *this;
+    }
+    /// Moves (run-time-sized storage only: fixed arrays are copied over the entries in use).
+    Hyper(Hyper&& o) noexcept requires(N == kDynamic)
+        : v_(o.v_), n_(o.n_), g_(std::move(o.g_)), h_(std::move(o.h_)) {}
+    Hyper& operator=(Hyper&& o) noexcept requires(N == kDynamic) {
+        v_ = o.v_;
+        n_ = o.n_;
+        g_ = std::move(o.g_);
+        h_ = std::move(o.h_);
         return *this;
     }
     ~Hyper() = default;
@@ -232,10 +246,15 @@ public:
     friend bool isnan(const Hyper& a) { return std::isnan(a.v_); }
 
 private:
-    Hyper(double v, int n) : v_(v), n_(n) {}
+    Hyper(double v, int n) : v_(v), n_(n) {
+        g_.resize(n);
+        h_.resize(packed(n));
+    }
     static constexpr int packed(int n) { return n * (n + 1) / 2; }
 
     void copy_from(const Hyper& o) {
+        g_.resize(n_);
+        h_.resize(packed(n_));
         for (int i = 0; i < n_; ++i) g_[i] = o.g_[i];
         const int m = packed(n_);
         for (int k = 0; k < m; ++k) h_[k] = o.h_[k];
@@ -306,8 +325,9 @@ private:
 
     double v_ = 0.0;
     int n_ = 0;
-    std::array<double, N> g_;        // only [0, n_) is meaningful
-    std::array<double, kPacked> h_;  // only [0, n_(n_+1)/2) is meaningful
+    detail::DirectionStore<double, N> g_;  // only [0, n_) is meaningful
+    detail::DirectionStore<double, N == kDynamic ? kDynamic : kPacked>
+        h_;  // only [0, n_(n_+1)/2) is meaningful
 };
 
 /// Plain double value of a Hyper scalar.
