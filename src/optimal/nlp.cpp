@@ -38,7 +38,10 @@ bool all_finite(const double* v, int n) {
     return true;
 }
 
-/// IPOPT's view of the transcription.
+/// IPOPT's view of the transcription. With reference scaling (Variable::ref0, ref) IPOPT's
+/// variables are y = (z - ref0) / (ref - ref0) for those variables (IPOPT's own scaling only
+/// multiplies, so the offset is applied here), z for the others: z = offset + span y with
+/// span 1, offset 0 where there is no reference; derivatives follow by the chain rule.
 class Nlp final : public Ipopt::TNLP {
 public:
     Nlp(detail::Transcription& tr, const Guess& guess, const SolverOptions& options)
@@ -52,6 +55,43 @@ public:
         xu_.resize(tr.n_vars());
         tr_.bounds(xl_.data(), xu_.data(), gl_.data(), gu_.data());
         g_work_.resize(tr.n_rows());
+        affine_ = tr_.reference_scaling(offset_, span_);
+        if (affine_) {
+            const int n = tr.n_vars();
+            for (int c = 0; c < n; ++c) {
+                if (span_(c) == 0.0) {
+                    span_(c) = 1.0;  // identity: magnitude scaling by IPOPT
+                    continue;
+                }
+                var_scale_(c) = 1.0;  // y is of order 1 already
+                auto to_y = [&](double b) {
+                    return std::abs(b) >= detail::kNlpInf ? b : (b - offset_(c)) / span_(c);
+                };
+                double lo = to_y(xl_[c]), hi = to_y(xu_[c]);
+                if (span_(c) < 0.0) {
+                    lo = xu_[c] >= detail::kNlpInf ? -detail::kNlpInf : to_y(xu_[c]);
+                    hi = xl_[c] <= -detail::kNlpInf ? detail::kNlpInf : to_y(xl_[c]);
+                }
+                xl_[c] = lo;
+                xu_[c] = hi;
+            }
+            y0_.assign(z0_.size(), 0.0);
+            for (int c = 0; c < n; ++c) y0_[c] = (z0_[c] - offset_(c)) / span_(c);
+            jac_cols_.resize(tr.nnz_jacobian());
+            std::vector<int> rows(tr.nnz_jacobian());
+            tr_.jacobian_structure(rows.data(), jac_cols_.data());
+            hess_rows_.resize(tr.nnz_hessian());
+            hess_cols_.resize(tr.nnz_hessian());
+            tr_.hessian_structure(hess_rows_.data(), hess_cols_.data());
+            z_work_.resize(z0_.size());
+        }
+    }
+
+    /// The transcription's variables z of IPOPT's x.
+    const double* to_z(const double* x) {
+        if (!affine_) return x;
+        for (std::size_t c = 0; c < z_work_.size(); ++c) z_work_[c] = offset_(c) + span_(c) * x[c];
+        return z_work_.data();
     }
 
     bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
@@ -87,25 +127,31 @@ public:
     bool get_starting_point(Index n, bool init_x, Number* x, bool /*init_z*/, Number* /*z_L*/,
                             Number* /*z_U*/, Index /*m*/, bool /*init_lambda*/,
                             Number* /*lambda*/) override {
-        if (init_x) std::copy(z0_.begin(), z0_.begin() + n, x);
+        if (init_x) {
+            const std::vector<double>& start = affine_ ? y0_ : z0_;
+            std::copy(start.begin(), start.begin() + n, x);
+        }
         return true;
     }
 
     bool eval_f(Index /*n*/, const Number* x, bool /*new_x*/, Number& obj_value) override {
         return guarded([&] {
-            obj_value = tr_.objective(x);
+            obj_value = tr_.objective(to_z(x));
             return std::isfinite(obj_value);
         });
     }
     bool eval_grad_f(Index n, const Number* x, bool /*new_x*/, Number* grad_f) override {
         return guarded([&] {
-            tr_.gradient(x, grad_f);
+            tr_.gradient(to_z(x), grad_f);
+            if (affine_) {
+                for (Index c = 0; c < n; ++c) grad_f[c] *= span_(c);
+            }
             return all_finite(grad_f, n);
         });
     }
     bool eval_g(Index /*n*/, const Number* x, bool /*new_x*/, Index m, Number* g) override {
         return guarded([&] {
-            tr_.constraints(x, g);
+            tr_.constraints(to_z(x), g);
             return all_finite(g, m);
         });
     }
@@ -116,9 +162,13 @@ public:
             return true;
         }
         return guarded([&] {
-            tr_.jacobian(x, values);
+            const double* z = to_z(x);
+            tr_.jacobian(z, values);
+            if (affine_) {
+                for (Index k = 0; k < nele_jac; ++k) values[k] *= span_(jac_cols_[k]);
+            }
             // IPOPT evaluates the Jacobian at accepted iterates only: remember the point
-            last_x_.assign(x, x + n);
+            last_x_.assign(z, z + n);
             return all_finite(values, nele_jac);
         });
     }
@@ -130,7 +180,11 @@ public:
             return true;
         }
         return guarded([&] {
-            tr_.hessian(x, obj_factor, lambda, values);
+            tr_.hessian(to_z(x), obj_factor, lambda, values);
+            if (affine_) {
+                for (Index k = 0; k < nele_hess; ++k)
+                    values[k] *= span_(hess_rows_[k]) * span_(hess_cols_[k]);
+            }
             return all_finite(values, nele_hess);
         });
     }
@@ -155,7 +209,7 @@ public:
         if (options_.progress) {
             IterationInfo info;
             info.iteration = iter;
-            info.objective = obj_value;
+            info.objective = tr_.maximising() ? -obj_value : obj_value;
             info.infeasibility = inf_pr;
             info.dual_infeasibility = inf_du;
             info.mu = mu;
@@ -172,7 +226,8 @@ public:
                            const Ipopt::IpoptData* /*ip_data*/,
                            Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) override {
         solver_return_ = static_cast<int>(status);
-        final_x_.assign(x, x + n);
+        const double* z = to_z(x);
+        final_x_.assign(z, z + n);
         final_lambda_.assign(lambda, lambda + m);
         final_objective_ = obj_value;
     }
@@ -213,6 +268,11 @@ private:
     std::vector<double> z0_, xl_, xu_, gl_, gu_, g_work_, last_x_;
     Eigen::VectorXd var_scale_, row_scale_;
     double obj_scale_ = 1.0;
+    // reference scaling (see the class comment)
+    bool affine_ = false;
+    Eigen::VectorXd offset_, span_;
+    std::vector<double> y0_, z_work_;
+    std::vector<int> jac_cols_, hess_rows_, hess_cols_;
 };
 
 std::string status_text(Ipopt::ApplicationReturnStatus s) {
@@ -284,6 +344,7 @@ Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
     const double cpu0 = process_cpu_seconds();
     const auto wall0 = std::chrono::steady_clock::now();
 
+    if (options.reject_guess_outside_bounds) validate_guess(model.info(), guess);
     detail::Transcription tr(model, mesh);
     Ipopt::SmartPtr<Nlp> nlp = new Nlp(tr, guess, options);
 
@@ -351,7 +412,7 @@ Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
         throw NumericalError("IPOPT returned no iterate: " + sol.status_text);
     }
     tr.extract(z, lambda, options.n_reported_violations, sol);
-    sol.objective = tr.objective(z);
+    sol.objective = tr.user_objective(z);
     sol.cpu_time = process_cpu_seconds() - cpu0;
     sol.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     if (options.resimulate) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -122,7 +123,27 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
         }
         row += static_cast<int>(ties_.size());
     }
+    nq_ = info.n_integrals();
+    integral_row_ = row;
+    row += nq_;
+    integral_out_ = nx_ + ng_ + (lagrange_ ? 1 : 0);
+    for (int j = 0; j < nu_; ++j) {
+        if (info.controls[static_cast<std::size_t>(j)].has_rate_bounds())
+            rate_controls_.push_back(j);
+    }
+    rate_row_ = row;
+    row += static_cast<int>(rate_controls_.size()) * n_points_;
+    // a rate-bounded control is continuous across the breaks (a jump is an unbounded rate)
+    continuity_row_ = row;
+    row += static_cast<int>(rate_controls_.size()) * (K - 1);
     n_rows_ = row;
+    sign_ = info.maximise ? -1.0 : 1.0;
+    for (int k = 0; k < K; ++k) {
+        Segment& s = seg_[k];
+        s.time_cols = {t0_col(), tf_col()};
+        if (s.seed_lo) s.time_cols.push_back(break_col(k));
+        if (s.seed_hi) s.time_cols.push_back(break_col(k + 1));
+    }
 
     n_node_out_ = model.n_node_outputs();
     n_boundary_out_ = model.n_boundary_outputs();
@@ -194,6 +215,55 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
             jac_col_.push_back(break_col(b));
         }
     }
+    // integral constraints: one dense row over the union of the node columns (each node's
+    // (h/2) w q adds into it; shared interface states and t0, tf, p appear once)
+    if (nq_ > 0) {
+        std::set<int> all;
+        for (const auto& cols : node_cols_) all.insert(cols.begin(), cols.end());
+        integral_cols_.assign(all.begin(), all.end());
+        integral_pos_.resize(static_cast<std::size_t>(n_points_));
+        for (int pt = 0; pt < n_points_; ++pt) {
+            for (const int c : node_cols_[pt]) {
+                const auto it = std::lower_bound(integral_cols_.begin(), integral_cols_.end(), c);
+                integral_pos_[pt].push_back(static_cast<int>(it - integral_cols_.begin()));
+            }
+        }
+        integral_jac_start_ = static_cast<int>(jac_row_.size());
+        for (int j = 0; j < nq_; ++j) {
+            for (const int c : integral_cols_) {
+                jac_row_.push_back(integral_row_ + j);
+                jac_col_.push_back(c);
+            }
+        }
+    }
+    // control rates: the segment's controls (D row) and its time columns (through 2/h)
+    for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+        const int j = rate_controls_[c];
+        for (const Segment& s : seg_) {
+            for (int i = 0; i < s.n; ++i) {
+                const int rr = rate_row_ + static_cast<int>(c) * n_points_ + s.point_offset + i;
+                rate_jac_start_.push_back(static_cast<int>(jac_row_.size()));
+                for (int l = 0; l < s.n; ++l) {
+                    jac_row_.push_back(rr);
+                    jac_col_.push_back(u_col(s.point_offset + l, j));
+                }
+                for (const int tc : s.time_cols) {
+                    jac_row_.push_back(rr);
+                    jac_col_.push_back(tc);
+                }
+            }
+        }
+    }
+    continuity_jac_start_ = static_cast<int>(jac_row_.size());
+    for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+        for (int k = 1; k < K; ++k) {
+            const int rr = continuity_row_ + static_cast<int>(c) * (K - 1) + (k - 1);
+            jac_row_.push_back(rr);
+            jac_col_.push_back(u_col(seg_[k].point_offset - 1, rate_controls_[c]));
+            jac_row_.push_back(rr);
+            jac_col_.push_back(u_col(seg_[k].point_offset, rate_controls_[c]));
+        }
+    }
 
     // Hessian structure (lower triangle), union of the node and boundary blocks.
     std::map<std::pair<int, int>, int> index;
@@ -238,6 +308,26 @@ Transcription::Transcription(const Model& model, const Mesh& mesh) : model_(mode
         }
         jn.out.resize(static_cast<std::size_t>(jn.n));
         jn.jac.resize(static_cast<std::size_t>(jn.n * nv));
+    }
+    if (!rate_controls_.empty()) {
+        // (time, time) and (U_l, time) entries: all within the node blocks already
+        for (Segment& s : seg_) {
+            const int ntv = static_cast<int>(s.time_cols.size());
+            s.time_hess.assign(static_cast<std::size_t>(ntv * ntv), -1);
+            for (int a = 0; a < ntv; ++a) {
+                for (int b = 0; b <= a; ++b)
+                    s.time_hess[a * ntv + b] = entry(s.time_cols[a], s.time_cols[b]);
+            }
+            s.rate_u_hess.assign(rate_controls_.size(), {});
+            for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+                for (int l = 0; l < s.n; ++l) {
+                    for (int v = 0; v < ntv; ++v) {
+                        s.rate_u_hess[c].push_back(
+                            entry(u_col(s.point_offset + l, rate_controls_[c]), s.time_cols[v]));
+                    }
+                }
+            }
+        }
     }
 
     node_out_.assign(n_points_, std::vector<double>(n_node_out_));
@@ -428,7 +518,65 @@ void Transcription::bounds(double* x_l, double* x_u, double* g_l, double* g_u) c
         g_l[r] = mesh_.min_segment_fraction;
         g_u[r] = kNlpInf;
     }
-    for (int r = tie_row_; r < n_rows_; ++r) g_l[r] = g_u[r] = 0.0;
+    for (int r = tie_row_; r < integral_row_; ++r) g_l[r] = g_u[r] = 0.0;
+    for (int j = 0; j < nq_; ++j) {
+        g_l[integral_row_ + j] = to_nlp(info.integrals[j].lower);
+        g_u[integral_row_ + j] = to_nlp(info.integrals[j].upper);
+    }
+    for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+        const Bounds& b = info.controls[rate_controls_[c]].rate;
+        for (int pt = 0; pt < n_points_; ++pt) {
+            g_l[rate_row_ + static_cast<int>(c) * n_points_ + pt] = to_nlp(b.lower);
+            g_u[rate_row_ + static_cast<int>(c) * n_points_ + pt] = to_nlp(b.upper);
+        }
+    }
+    for (int r = continuity_row_; r < n_rows_; ++r) g_l[r] = g_u[r] = 0.0;
+}
+
+bool Transcription::reference_scaling(Eigen::VectorXd& offset, Eigen::VectorXd& span) const {
+    const ProblemInfo& info = model_.info();
+    offset = Eigen::VectorXd::Zero(n_vars_);
+    span = Eigen::VectorXd::Zero(n_vars_);
+    bool any = false;
+    auto set = [&](const Variable& v, int col) {
+        if (!v.has_reference()) return;
+        offset(col) = v.ref0.value_or(0.0);
+        span(col) = *v.ref - v.ref0.value_or(0.0);
+        any = true;
+    };
+    for (int g = 0; g < n_mesh_points_; ++g) {
+        for (int r = 0; r < nx_; ++r) set(info.states[r], x_col(g, r));
+    }
+    for (int pt = 0; pt < n_points_; ++pt) {
+        for (int j = 0; j < nu_; ++j) set(info.controls[j], u_col(pt, j));
+    }
+    for (int j = 0; j < np_; ++j) set(info.parameters[j], p_col(j));
+    return any;
+}
+
+void Transcription::rate_factor(int k, const double* z, double& g, std::vector<double>& dg,
+                                std::vector<double>& d2g) const {
+    const Segment& s = seg_[k];
+    const double T = z[tf_col()] - z[t0_col()];
+    const double S = break_value(z, k + 1) - break_value(z, k);
+    g = 2.0 / (T * S);
+    const std::size_t ntv = s.time_cols.size();
+    std::vector<double> dT(ntv, 0.0), dS(ntv, 0.0);
+    dT[0] = -1.0;
+    dT[1] = 1.0;
+    std::size_t v = 2;
+    if (s.seed_lo) dS[v++] = -1.0;
+    if (s.seed_hi) dS[v] = 1.0;
+    dg.assign(ntv, 0.0);
+    d2g.assign(ntv * ntv, 0.0);
+    for (std::size_t a = 0; a < ntv; ++a) {
+        dg[a] = -g * (dT[a] / T + dS[a] / S);
+        for (std::size_t b = 0; b < ntv; ++b) {
+            d2g[a * ntv + b] =
+                g * (2.0 * dT[a] * dT[b] / (T * T) + (dT[a] * dS[b] + dS[a] * dT[b]) / (T * S) +
+                     2.0 * dS[a] * dS[b] / (S * S));
+        }
+    }
 }
 
 void Transcription::initial_point(const Guess& guess, double* z) const {
@@ -492,18 +640,28 @@ void Transcription::scaling(const double* z0, Eigen::VectorXd& var_scale,
         double gmax = 0.0;
         for (int g = 0; g < n_mesh_points_; ++g) gmax = std::max(gmax, std::abs(z0[x_col(g, r)]));
         xs(r) = magnitude(info.states[r].scale, info.states[r].lower, info.states[r].upper, gmax);
+        if (info.states[r].has_reference()) {
+            xs(r) = std::abs(*info.states[r].ref - info.states[r].ref0.value_or(0.0));
+        }
         for (int g = 0; g < n_mesh_points_; ++g) var_scale(x_col(g, r)) = xs(r);
     }
     for (int j = 0; j < nu_; ++j) {
         double gmax = 0.0;
         for (int pt = 0; pt < n_points_; ++pt) gmax = std::max(gmax, std::abs(z0[u_col(pt, j)]));
-        const double s =
+        double s =
             magnitude(info.controls[j].scale, info.controls[j].lower, info.controls[j].upper, gmax);
+        if (info.controls[j].has_reference()) {
+            s = std::abs(*info.controls[j].ref - info.controls[j].ref0.value_or(0.0));
+        }
         for (int pt = 0; pt < n_points_; ++pt) var_scale(u_col(pt, j)) = s;
     }
     for (int j = 0; j < np_; ++j) {
         var_scale(p_col(j)) = magnitude(info.parameters[j].scale, info.parameters[j].lower,
                                         info.parameters[j].upper, std::abs(z0[p_col(j)]));
+        if (info.parameters[j].has_reference()) {
+            var_scale(p_col(j)) =
+                std::abs(*info.parameters[j].ref - info.parameters[j].ref0.value_or(0.0));
+        }
     }
     const double guess_t = std::max(std::abs(z0[t0_col()]), std::abs(z0[tf_col()]));
     const double ts = info.time_scale > 0.0
@@ -530,6 +688,21 @@ void Transcription::scaling(const double* z0, Eigen::VectorXd& var_scale,
             row_scale(jn.first_row + e) = magnitude(c.scale, c.lower, c.upper, 0.0);
         }
     }
+    for (int j = 0; j < nq_; ++j) {
+        const Constraint& c = info.integrals[j];
+        row_scale(integral_row_ + j) = magnitude(c.scale, c.lower, c.upper, 0.0);
+    }
+    for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+        const Bounds& b = info.controls[rate_controls_[c]].rate;
+        const double rs = magnitude(0.0, b.lower, b.upper, 0.0);
+        for (int pt = 0; pt < n_points_; ++pt)
+            row_scale(rate_row_ + static_cast<int>(c) * n_points_ + pt) = rs;
+        const int K = n_segments();
+        for (int k = 1; k < K; ++k) {
+            row_scale(continuity_row_ + static_cast<int>(c) * (K - 1) + (k - 1)) =
+                var_scale(u_col(0, rate_controls_[c]));
+        }
+    }
     row_scale_ = row_scale;
     if (info.objective_scale > 0.0) {
         obj_scale = info.objective_scale;
@@ -549,13 +722,18 @@ void Transcription::hessian_structure(int* rows, int* cols) const {
     std::copy(hess_col_.begin(), hess_col_.end(), cols);
 }
 
-double Transcription::objective(const double* z) {
+double Transcription::user_objective(const double* z) {
     update(z, false);
     double j = mayer_ ? boundary_out_[ne_] : 0.0;
     if (lagrange_) {
         for (int pt = 0; pt < n_points_; ++pt) j += node_out_[pt][nx_ + ng_];
     }
     return j;
+}
+
+double Transcription::objective(const double* z) {
+    const double j = user_objective(z);
+    return sign_ < 0.0 ? -j : j;
 }
 
 void Transcription::gradient(const double* z, double* grad) {
@@ -572,6 +750,9 @@ void Transcription::gradient(const double* z, double* grad) {
             const std::size_t nv = cols.size();
             for (std::size_t c = 0; c < nv; ++c) grad[cols[c]] += node_jac_[pt][row * nv + c];
         }
+    }
+    if (sign_ < 0.0) {
+        for (int c = 0; c < n_vars_; ++c) grad[c] = -grad[c];
     }
 }
 
@@ -603,6 +784,30 @@ void Transcription::constraints(const double* z, double* g) {
     for (std::size_t i = 0; i < ties_.size(); ++i) {
         const Tie& t = ties_[i];
         g[tie_row_ + static_cast<int>(i)] = brk(t.k) - (1.0 - t.w) * brk(t.a) - t.w * brk(t.c);
+    }
+    for (int j = 0; j < nq_; ++j) {
+        double v = 0.0;
+        for (int pt = 0; pt < n_points_; ++pt) v += node_out_[pt][integral_out_ + j];
+        g[integral_row_ + j] = v;
+    }
+    std::vector<double> dg, d2g;
+    for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+        const int j = rate_controls_[c];
+        for (int k = 0; k < K; ++k) {
+            const Segment& s = seg_[k];
+            const Eigen::MatrixXd& D = s.rule.differentiation;
+            double fac = 0.0;
+            rate_factor(k, z, fac, dg, d2g);
+            for (int i = 0; i < s.n; ++i) {
+                double a = 0.0;
+                for (int l = 0; l < s.n; ++l) a += D(i, l) * z[u_col(s.point_offset + l, j)];
+                g[rate_row_ + static_cast<int>(c) * n_points_ + s.point_offset + i] = fac * a;
+            }
+        }
+        for (int k = 1; k < K; ++k) {
+            g[continuity_row_ + static_cast<int>(c) * (K - 1) + (k - 1)] =
+                z[u_col(seg_[k].point_offset - 1, j)] - z[u_col(seg_[k].point_offset, j)];
+        }
     }
 }
 
@@ -658,6 +863,43 @@ void Transcription::jacobian(const double* z, double* values) {
         if (t.a > 0) values[idx++] = -(1.0 - t.w);
         if (t.c < K) values[idx++] = -t.w;
     }
+    if (nq_ > 0) {
+        const std::size_t nc = integral_cols_.size();
+        for (int j = 0; j < nq_; ++j) {
+            double* row = values + integral_jac_start_ + static_cast<std::size_t>(j) * nc;
+            std::fill(row, row + nc, 0.0);
+            for (int pt = 0; pt < n_points_; ++pt) {
+                const std::size_t nv = node_cols_[pt].size();
+                const auto& pos = integral_pos_[pt];
+                const auto out = static_cast<std::size_t>(integral_out_ + j);
+                for (std::size_t c = 0; c < nv; ++c) row[pos[c]] += node_jac_[pt][out * nv + c];
+            }
+        }
+    }
+    std::vector<double> dg, d2g;
+    int rate = 0;
+    for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+        const int j = rate_controls_[c];
+        for (int k = 0; k < K; ++k) {
+            const Segment& s = seg_[k];
+            const Eigen::MatrixXd& D = s.rule.differentiation;
+            double fac = 0.0;
+            rate_factor(k, z, fac, dg, d2g);
+            for (int i = 0; i < s.n; ++i, ++rate) {
+                int idx = rate_jac_start_[rate];
+                double a = 0.0;
+                for (int l = 0; l < s.n; ++l) {
+                    a += D(i, l) * z[u_col(s.point_offset + l, j)];
+                    values[idx++] = fac * D(i, l);
+                }
+                for (const double d : dg) values[idx++] = a * d;
+            }
+        }
+    }
+    for (int r = continuity_jac_start_; r < nnz_jacobian(); r += 2) {
+        values[r] = 1.0;
+        values[r + 1] = -1.0;
+    }
 }
 
 void Transcription::hessian(const double* z, double obj_factor, const double* lambda,
@@ -679,8 +921,12 @@ void Transcription::hessian(const double* z, double obj_factor, const double* la
                 any = any || w[nx_ + j] != 0.0;
             }
             if (lagrange_) {
-                w[nx_ + ng_] = obj_factor;
+                w[nx_ + ng_] = sign_ * obj_factor;
                 any = any || obj_factor != 0.0;
+            }
+            for (int j = 0; j < nq_; ++j) {
+                w[integral_out_ + j] = lambda[integral_row_ + j];
+                any = any || w[integral_out_ + j] != 0.0;
             }
             if (!any) continue;
             const auto& cols = node_cols_[pt];
@@ -702,7 +948,7 @@ void Transcription::hessian(const double* z, double obj_factor, const double* la
             any = any || wb[e] != 0.0;
         }
         if (mayer_) {
-            wb[ne_] = obj_factor;
+            wb[ne_] = sign_ * obj_factor;
             any = any || obj_factor != 0.0;
         }
         if (any) {
@@ -717,6 +963,33 @@ void Transcription::hessian(const double* z, double obj_factor, const double* la
         }
     }
     interior_hessian(z, lambda, values);
+    // control rates r = (2/h) a, a = D_i U: d2r = a d2(2/h) (time, time) + D_il d(2/h) (U_l, time)
+    std::vector<double> dg, d2g;
+    for (std::size_t c = 0; c < rate_controls_.size(); ++c) {
+        const int j = rate_controls_[c];
+        for (int k = 0; k < n_segments(); ++k) {
+            const Segment& s = seg_[k];
+            const Eigen::MatrixXd& D = s.rule.differentiation;
+            const int ntv = static_cast<int>(s.time_cols.size());
+            double fac = 0.0;
+            rate_factor(k, z, fac, dg, d2g);
+            for (int i = 0; i < s.n; ++i) {
+                const double lam =
+                    lambda[rate_row_ + static_cast<int>(c) * n_points_ + s.point_offset + i];
+                if (lam == 0.0) continue;
+                double a = 0.0;
+                for (int l = 0; l < s.n; ++l) a += D(i, l) * z[u_col(s.point_offset + l, j)];
+                for (int p = 0; p < ntv; ++p) {
+                    for (int q = 0; q <= p; ++q)
+                        values[s.time_hess[p * ntv + q]] += lam * a * d2g[p * ntv + q];
+                }
+                for (int l = 0; l < s.n; ++l) {
+                    for (int v = 0; v < ntv; ++v)
+                        values[s.rate_u_hess[c][l * ntv + v]] += lam * D(i, l) * dg[v];
+                }
+            }
+        }
+    }
 }
 
 void Transcription::interior_hessian(const double* z, const double* lambda, double* values) {
@@ -756,6 +1029,12 @@ void Transcription::extract(const double* z, const double* lambda, int n_report,
                              (sol.final_time - sol.initial_time) * break_value(z, k));
     }
     update(z, false);
+    sol.integrals.resize(nq_);
+    for (int j = 0; j < nq_; ++j) {
+        double v = 0.0;
+        for (int pt = 0; pt < n_points_; ++pt) v += node_out_[pt][integral_out_ + j];
+        sol.integrals(j) = v;
+    }
     sol.segments.clear();
     for (int k = 0; k < K; ++k) {
         const Segment& s = seg_[k];
@@ -832,9 +1111,31 @@ void Transcription::extract(const double* z, const double* lambda, int n_report,
                     v.time = sol.breaks[static_cast<std::size_t>(jn.index)];
                 }
             }
-        } else {
+        } else if (row < integral_row_) {
             v.kind = "mesh";
             v.name = row < tie_row_ ? "segment order" : "segment tie";
+        } else if (row < rate_row_) {
+            v.kind = "integral";
+            v.name = info.integrals[row - integral_row_].name;
+            v.time = sol.final_time;
+        } else if (row >= continuity_row_) {
+            const int c = (row - continuity_row_) / (K - 1);
+            const int k = (row - continuity_row_) % (K - 1) + 1;
+            v.kind = "rate";
+            v.name = "continuity " + info.controls[rate_controls_[c]].name;
+            v.segment = k;
+            v.node = 0;
+            v.time = sol.breaks[static_cast<std::size_t>(k)];
+        } else {
+            const int c = (row - rate_row_) / n_points_;
+            const int pt = (row - rate_row_) % n_points_;
+            int k = K - 1;
+            while (k > 0 && seg_[k].point_offset > pt) --k;
+            v.kind = "rate";
+            v.name = "rate " + info.controls[rate_controls_[c]].name;
+            v.segment = k;
+            v.node = pt - seg_[k].point_offset;
+            v.time = node_time(k, v.node, z);
         }
         sol.max_violation = std::max(sol.max_violation, v.amount);
         sol.max_scaled_violation = std::max(sol.max_scaled_violation, v.scaled);

@@ -6,7 +6,10 @@
 /// Variables: X (state at each distinct mesh point; adjacent segments share their common
 /// point), U (control at each collocation point, per segment), p, t0, tf, free interior breaks.
 /// Rows: defects D_k X_k - (h_k/2) f (segment k, node i, state r), path constraints at each
-/// collocation point, events, interior events (by junction), and the ordering of free breaks.
+/// collocation point, events, interior events (by junction), the ordering of free breaks, the
+/// ties of breaks to phase breaks, integral constraints (the LGL quadrature of the integrands),
+/// control rates (2/h_k) D_k U_k at every node of each control with rate bounds, and the
+/// continuity of those controls at the breaks.
 
 #include <Eigen/Core>
 #include <string>
@@ -40,11 +43,20 @@ public:
     /// Variable scales (typical magnitudes), constraint scales and objective scale.
     void scaling(const double* z0, Eigen::VectorXd& var_scale, Eigen::VectorXd& row_scale,
                  double& obj_scale);
+    /// Reference scaling (Variable::ref0, ref): per variable the offset ref0 and the span
+    /// ref - ref0 of the affine map z = ref0 + (ref - ref0) y; span 0 where the variable has no
+    /// reference (magnitude scaling). False when no variable has one.
+    [[nodiscard]] bool reference_scaling(Eigen::VectorXd& offset, Eigen::VectorXd& span) const;
     void jacobian_structure(int* rows, int* cols) const;
     void hessian_structure(int* rows, int* cols) const;
 
     // ---- evaluation --------------------------------------------------------------------------
+    /// The NLP's objective (minimised: the negative of the user's when maximising).
     [[nodiscard]] double objective(const double* z);
+    /// True when the problem is maximised (objective() is the negative of the user's).
+    [[nodiscard]] bool maximising() const { return sign_ < 0.0; }
+    /// The objective with the user's sign.
+    [[nodiscard]] double user_objective(const double* z);
     void gradient(const double* z, double* grad);
     void constraints(const double* z, double* g);
     void jacobian(const double* z, double* values);
@@ -64,7 +76,16 @@ private:
         LglRule rule;
         bool seed_lo = false;
         bool seed_hi = false;
+        // control rates: time columns (t0, tf, [s_lo], [s_hi]), their Hessian entries (lower,
+        // ntv x ntv, -1 above), and per rate-bounded control the entries (U_l, time v)
+        std::vector<int> time_cols;
+        std::vector<int> time_hess;
+        std::vector<std::vector<int>> rate_u_hess;
     };
+    /// 2/h of segment k and its derivatives over the segment's time columns (t0, tf, [s_lo],
+    /// [s_hi]): g, dg (ntv), d2g (ntv x ntv, full).
+    void rate_factor(int k, const double* z, double& g, std::vector<double>& dg,
+                     std::vector<double>& d2g) const;
 
     [[nodiscard]] int x_col(int mesh_point, int r) const { return mesh_point * nx_ + r; }
     [[nodiscard]] int u_col(int point, int j) const { return u0_ + point * nu_ + j; }
@@ -107,6 +128,19 @@ private:
     std::vector<Tie> ties_;
     int tie_row_ = 0;
     int ni_ = 0;  // interior events
+
+    // integral constraints: rows [integral_row_, +nq), each over the union of all node columns
+    int nq_ = 0, integral_row_ = 0, integral_out_ = 0, integral_jac_start_ = 0;
+    std::vector<int> integral_cols_;              // union of node columns, increasing
+    std::vector<std::vector<int>> integral_pos_;  // per point: local column -> position
+    // control rates: rows rate_row_ + c * n_points_ + pt for rate-bounded control c
+    std::vector<int> rate_controls_;  // control indices with rate bounds
+    int rate_row_ = 0;
+    std::vector<int> rate_jac_start_;  // per rate row
+    // their continuity at breaks: rows continuity_row_ + c * (K - 1) + (k - 1), U_{k-1,last} -
+    // U_{k,0}
+    int continuity_row_ = 0, continuity_jac_start_ = 0;
+    double sign_ = 1.0;  // -1 when maximising
 
     /// The interior events of one mesh junction.
     struct Junction {

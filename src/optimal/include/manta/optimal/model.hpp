@@ -2,14 +2,18 @@
 /// @file model.hpp
 /// `Model`: the type-erased face of a user problem that the transcription calls, one node at a
 /// time. `make_model(problem)` wraps a problem type (problem.hpp) and differentiates it per node
-/// by forward AD: first derivatives with `Ad1` (ad.hpp), exact Hessians with `AdH` (hyper.hpp).
+/// by forward AD: first derivatives with `Ad1` (ad.hpp), exact Hessians with `AdH` (hyper.hpp);
+/// an evaluation with more than kMaxDirections local variables uses their run-time-sized
+/// versions `AdDyn1` and `AdDynH` instead (heap storage sized to the problem), so a problem of
+/// any size works and problems within kMaxDirections keep the fixed-size scalars.
 /// Nothing is recorded between calls, so derivatives follow the branches taken at each evaluation.
 ///
 /// Local variables of a collocation node, in order: x (nx), u (nu), p (np), t0, tf, then the
 /// segment's start and end fractions s_lo, s_hi when they are decision variables. Outputs of a
 /// node: q = (h/2) f (nx), the path constraints g (ng), and l = (h/2) w L when the problem has a
-/// Lagrange cost, with h = (tf - t0)(s_hi - s_lo) the segment duration, w the node's LGL weight
-/// and the node's time t = t0 + (tf - t0)(s_lo + (s_hi - s_lo) a).
+/// Lagrange cost, then (h/2) w q for the integrands q of the integral constraints (nq), with
+/// h = (tf - t0)(s_hi - s_lo) the segment duration, w the node's LGL weight and the node's time
+/// t = t0 + (tf - t0)(s_lo + (s_hi - s_lo) a).
 ///
 /// Boundary variables: x(t0) (nx), x(tf) (nx), p, t0, tf; outputs: the events e (ne), then the
 /// Mayer cost when the problem has one.
@@ -93,9 +97,10 @@ public:
     [[nodiscard]] int n_interior_vars() const {
         return info().n_states() + info().n_parameters() + 3;
     }
-    /// Number of node outputs: nx + ng (+1 with a Lagrange cost).
+    /// Number of node outputs: nx + ng (+1 with a Lagrange cost) + nq (integral constraints).
     [[nodiscard]] int n_node_outputs() const {
-        return info().n_states() + info().n_path() + (has_lagrange() ? 1 : 0);
+        return info().n_states() + info().n_path() + (has_lagrange() ? 1 : 0) +
+               info().n_integrals();
     }
     /// Number of local node variables for a placement.
     [[nodiscard]] int n_node_vars(const NodePlacement& at) const {
@@ -131,6 +136,10 @@ concept HasMayer = requires(const P& p, std::span<const T> x, const T& t) {
 };
 
 template <class P, class T>
+concept HasIntegrand = requires(const P& p, std::span<const T> x, const T& t, std::span<T> q) {
+    p.integrand(x, x, x, t, q);
+};
+template <class P, class T>
 concept HasNode = requires(const P& p, std::span<const T> x, const T& t, std::span<T> out) {
     p.node(x, x, x, t, out, out);
 };
@@ -143,26 +152,18 @@ concept HasInterior = requires(const P& p, std::span<const T> x, const T& t, std
 
 /// Second-order AD scalar of the Hessians (value, gradient, packed symmetric Hessian).
 using AdH = Hyper<kMaxDirections>;
+/// Second-order AD scalar with any number of directions (heap storage).
+using AdDynH = Hyper<kDynamic>;
 
 namespace detail {
 
 /// Seed n AD variables of type A from plain values.
 template <class A>
-std::vector<A> seed(std::span<const double> v);
-template <>
-inline std::vector<Ad1> seed<Ad1>(std::span<const double> v) {
+std::vector<A> seed(std::span<const double> v) {
     const int n = static_cast<int>(v.size());
-    std::vector<Ad1> r;
+    std::vector<A> r;
     r.reserve(v.size());
-    for (int i = 0; i < n; ++i) r.push_back(Ad1::variable(v[i], n, i));
-    return r;
-}
-template <>
-inline std::vector<AdH> seed<AdH>(std::span<const double> v) {
-    const int n = static_cast<int>(v.size());
-    std::vector<AdH> r;
-    r.reserve(v.size());
-    for (int i = 0; i < n; ++i) r.push_back(AdH::variable(v[i], n, i));
+    for (int i = 0; i < n; ++i) r.push_back(A::variable(v[i], n, i));
     return r;
 }
 template <>
@@ -182,15 +183,6 @@ class ProblemModel final : public Model {
 public:
     explicit ProblemModel(P problem) : problem_(std::move(problem)), info_(problem_.info()) {
         info_.validate();
-        const int nx = info_.n_states();
-        if (nx + info_.n_controls() + info_.n_parameters() + 4 > kMaxDirections ||
-            2 * nx + info_.n_parameters() + 2 > kMaxDirections) {
-            throw InputError("optimal control problem '" + info_.name + "': " + std::to_string(nx) +
-                             " states, " + std::to_string(info_.n_controls()) + " controls and " +
-                             std::to_string(info_.n_parameters()) +
-                             " parameters exceed the AD capacity of " +
-                             std::to_string(kMaxDirections) + " directions per node");
-        }
         if (info_.n_path() > 0 && !detail::HasPath<P, double>) {
             throw InputError("optimal control problem '" + info_.name +
                              "' declares path constraints but has no path() function");
@@ -202,6 +194,10 @@ public:
         if (info_.n_interior_events() > 0 && !detail::HasInterior<P, double>) {
             throw InputError("optimal control problem '" + info_.name +
                              "' declares interior events but has no interior() function");
+        }
+        if (info_.n_integrals() > 0 && !detail::HasIntegrand<P, double>) {
+            throw InputError("optimal control problem '" + info_.name +
+                             "' declares integral constraints but has no integrand() function");
         }
     }
 
@@ -228,17 +224,19 @@ public:
     }
     void node_jacobian(std::span<const double> v, const NodePlacement& at, std::span<double> out,
                        std::span<double> jac) const override {
-        const auto vars = detail::seed<Ad1>(v);
-        std::vector<Ad1> o(out.size());
-        node_eval<Ad1>(std::span<const Ad1>(vars), at, std::span<Ad1>(o));
-        extract_first(o, static_cast<int>(v.size()), out, jac);
+        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+            node_jacobian_as<Ad1>(v, at, out, jac);
+        } else {
+            node_jacobian_as<AdDyn1>(v, at, out, jac);
+        }
     }
     void node_hessian(std::span<const double> v, const NodePlacement& at,
                       std::span<const double> weights, std::span<double> hess) const override {
-        const auto vars = detail::seed<AdH>(v);
-        std::vector<AdH> o(weights.size());
-        node_eval<AdH>(std::span<const AdH>(vars), at, std::span<AdH>(o));
-        extract_second(o, weights, static_cast<int>(v.size()), hess);
+        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+            node_hessian_as<AdH>(v, at, weights, hess);
+        } else {
+            node_hessian_as<AdDynH>(v, at, weights, hess);
+        }
     }
 
     void boundary_values(std::span<const double> v, std::span<double> out) const override {
@@ -246,17 +244,19 @@ public:
     }
     void boundary_jacobian(std::span<const double> v, std::span<double> out,
                            std::span<double> jac) const override {
-        const auto vars = detail::seed<Ad1>(v);
-        std::vector<Ad1> o(out.size());
-        boundary_eval<Ad1>(std::span<const Ad1>(vars), std::span<Ad1>(o));
-        extract_first(o, static_cast<int>(v.size()), out, jac);
+        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+            boundary_jacobian_as<Ad1>(v, out, jac);
+        } else {
+            boundary_jacobian_as<AdDyn1>(v, out, jac);
+        }
     }
     void boundary_hessian(std::span<const double> v, std::span<const double> weights,
                           std::span<double> hess) const override {
-        const auto vars = detail::seed<AdH>(v);
-        std::vector<AdH> o(weights.size());
-        boundary_eval<AdH>(std::span<const AdH>(vars), std::span<AdH>(o));
-        extract_second(o, weights, static_cast<int>(v.size()), hess);
+        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+            boundary_hessian_as<AdH>(v, weights, hess);
+        } else {
+            boundary_hessian_as<AdDynH>(v, weights, hess);
+        }
     }
 
     void interior_values(int junction, std::span<const double> v,
@@ -265,20 +265,72 @@ public:
     }
     void interior_jacobian(int junction, std::span<const double> v, std::span<double> out,
                            std::span<double> jac) const override {
-        const auto vars = detail::seed<Ad1>(v);
-        std::vector<Ad1> o(out.size());
-        interior_eval<Ad1>(junction, std::span<const Ad1>(vars), std::span<Ad1>(o));
-        extract_first(o, static_cast<int>(v.size()), out, jac);
+        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+            interior_jacobian_as<Ad1>(junction, v, out, jac);
+        } else {
+            interior_jacobian_as<AdDyn1>(junction, v, out, jac);
+        }
     }
     void interior_hessian(int junction, std::span<const double> v, std::span<const double> weights,
                           std::span<double> hess) const override {
-        const auto vars = detail::seed<AdH>(v);
-        std::vector<AdH> o(weights.size());
-        interior_eval<AdH>(junction, std::span<const AdH>(vars), std::span<AdH>(o));
-        extract_second(o, weights, static_cast<int>(v.size()), hess);
+        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+            interior_hessian_as<AdH>(junction, v, weights, hess);
+        } else {
+            interior_hessian_as<AdDynH>(junction, v, weights, hess);
+        }
     }
 
 private:
+    // Derivatives with first-order scalar A1 or second-order scalar A2 (fixed or run-time size).
+    template <class A1>
+    void node_jacobian_as(std::span<const double> v, const NodePlacement& at, std::span<double> out,
+                          std::span<double> jac) const {
+        const auto vars = detail::seed<A1>(v);
+        std::vector<A1> o(out.size());
+        node_eval<A1>(std::span<const A1>(vars), at, std::span<A1>(o));
+        extract_first(o, static_cast<int>(v.size()), out, jac);
+    }
+    template <class A2>
+    void node_hessian_as(std::span<const double> v, const NodePlacement& at,
+                         std::span<const double> weights, std::span<double> hess) const {
+        const auto vars = detail::seed<A2>(v);
+        std::vector<A2> o(weights.size());
+        node_eval<A2>(std::span<const A2>(vars), at, std::span<A2>(o));
+        extract_second(o, weights, static_cast<int>(v.size()), hess);
+    }
+    template <class A1>
+    void boundary_jacobian_as(std::span<const double> v, std::span<double> out,
+                              std::span<double> jac) const {
+        const auto vars = detail::seed<A1>(v);
+        std::vector<A1> o(out.size());
+        boundary_eval<A1>(std::span<const A1>(vars), std::span<A1>(o));
+        extract_first(o, static_cast<int>(v.size()), out, jac);
+    }
+    template <class A2>
+    void boundary_hessian_as(std::span<const double> v, std::span<const double> weights,
+                             std::span<double> hess) const {
+        const auto vars = detail::seed<A2>(v);
+        std::vector<A2> o(weights.size());
+        boundary_eval<A2>(std::span<const A2>(vars), std::span<A2>(o));
+        extract_second(o, weights, static_cast<int>(v.size()), hess);
+    }
+    template <class A1>
+    void interior_jacobian_as(int junction, std::span<const double> v, std::span<double> out,
+                              std::span<double> jac) const {
+        const auto vars = detail::seed<A1>(v);
+        std::vector<A1> o(out.size());
+        interior_eval<A1>(junction, std::span<const A1>(vars), std::span<A1>(o));
+        extract_first(o, static_cast<int>(v.size()), out, jac);
+    }
+    template <class A2>
+    void interior_hessian_as(int junction, std::span<const double> v,
+                             std::span<const double> weights, std::span<double> hess) const {
+        const auto vars = detail::seed<A2>(v);
+        std::vector<A2> o(weights.size());
+        interior_eval<A2>(junction, std::span<const A2>(vars), std::span<A2>(o));
+        extract_second(o, weights, static_cast<int>(v.size()), hess);
+    }
+
     /// Interior events of a junction in scalar type T.
     template <class T>
     void interior_eval(int junction, std::span<const T> v, std::span<T> out) const {
@@ -325,8 +377,17 @@ private:
             }
         }
         for (std::size_t r = 0; r < nx; ++r) out[r] = half_h * xdot[r];
+        [[maybe_unused]] std::size_t next = nx + ng;
         if constexpr (detail::HasLagrange<P, T>) {
-            out[nx + ng] = half_h * at.weight * problem_.lagrange(x, u, p, t);
+            out[next++] = half_h * at.weight * problem_.lagrange(x, u, p, t);
+        }
+        if constexpr (detail::HasIntegrand<P, T>) {
+            const std::size_t nq = info_.integrals.size();
+            if (nq > 0) {
+                std::vector<T> q(nq);
+                problem_.integrand(x, u, p, t, std::span<T>(q));
+                for (std::size_t j = 0; j < nq; ++j) out[next + j] = half_h * at.weight * q[j];
+            }
         }
     }
 
@@ -349,14 +410,16 @@ private:
         }
     }
 
-    static void extract_first(const std::vector<Ad1>& o, int n, std::span<double> out,
+    template <class A1>
+    static void extract_first(const std::vector<A1>& o, int n, std::span<double> out,
                               std::span<double> jac) {
         for (std::size_t r = 0; r < o.size(); ++r) {
             out[r] = o[r].value();
             for (int c = 0; c < n; ++c) jac[r * n + c] = o[r].derivative(c);
         }
     }
-    static void extract_second(const std::vector<AdH>& o, std::span<const double> weights, int n,
+    template <class A2>
+    static void extract_second(const std::vector<A2>& o, std::span<const double> weights, int n,
                                std::span<double> hess) {
         std::fill(hess.begin(), hess.end(), 0.0);
         for (std::size_t r = 0; r < o.size(); ++r) {

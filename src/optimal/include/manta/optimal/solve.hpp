@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -41,6 +42,14 @@ struct Mesh {
 
 class Solution;
 
+/// A guessed value of a state, control or parameter by name: `start` at t0, `end` at tf
+/// (a parameter takes `start`).
+struct NamedValue {
+    std::string name;  ///< a state, control or parameter of the problem
+    double start = 0.0;
+    double end = 0.0;
+};
+
 /// A starting point for the NLP: state and control time histories, parameters and times.
 /// Linear between boundary values, interpolated from a time history (e.g. a simulation), or a
 /// previous solution interpolated with its Lagrange polynomials. The guess is stretched
@@ -52,6 +61,13 @@ public:
                                       const Eigen::VectorXd& xf, const Eigen::VectorXd& u0,
                                       const Eigen::VectorXd& uf,
                                       const Eigen::VectorXd& parameters = {});
+    /// Linear by name: each listed state, control or parameter from `start` at t0 to `end` at
+    /// tf; a state not listed starts (ends) at its initial (final) value where that is fixed,
+    /// else at 0 moved into its bounds, and so do controls and parameters (from their bounds).
+    /// InputError for an unknown or repeated name, or a value outside the variable's bounds
+    /// (naming the variable, the value and the bounds).
+    [[nodiscard]] static Guess linear(const ProblemInfo& info, double t0, double tf,
+                                      const std::vector<NamedValue>& values);
     /// Piecewise-linear interpolation of samples: `time` strictly increasing (>= 2 samples),
     /// `states` (samples x nx), `controls` (samples x nu).
     [[nodiscard]] static Guess from_history(std::vector<double> time, Eigen::MatrixXd states,
@@ -67,6 +83,7 @@ public:
     void at(double t, Eigen::VectorXd& x, Eigen::VectorXd& u) const;
 
 private:
+    friend void validate_guess(const ProblemInfo& info, const Guess& guess);
     double t0_ = 0.0;
     double tf_ = 1.0;
     Eigen::VectorXd p_;
@@ -108,6 +125,8 @@ struct SolverOptions {
     /// else taken as text), e.g. {"mumps_mem_percent", "100"}. InputError for an unknown option.
     std::vector<std::pair<std::string, std::string>> ipopt_options;
     bool automatic_scaling = true;  ///< scale variables/constraints from bounds and scales
+    /// Reject a guess outside the bounds (validate_guess) instead of moving it into them.
+    bool reject_guess_outside_bounds = false;
     /// Called once per IPOPT iteration; return false to stop the solver.
     std::function<bool(const IterationInfo&)> progress;
     /// Re-simulate the controls a posteriori (Solution::resimulation).
@@ -190,7 +209,8 @@ public:
     Eigen::VectorXd parameters;  ///< p
     std::vector<double> breaks;  ///< segment boundary times (K+1)
     std::vector<SegmentSolution> segments;
-    double max_violation = 0.0;         ///< largest unscaled constraint violation
+    Eigen::VectorXd integrals;   ///< values of the integral constraints (ProblemInfo::integrals)
+    double max_violation = 0.0;  ///< largest unscaled constraint violation
     double max_scaled_violation = 0.0;  ///< largest scaled constraint violation
     std::vector<Violation> violations;  ///< the most violated constraints, worst first
     Resimulation resimulation;          ///< a-posteriori check (when requested)
@@ -220,6 +240,23 @@ public:
     /// All nodes in time order (interface points appear once per segment).
     [[nodiscard]] int n_nodes() const;
 
+    // ---- by name (InputError for a name the problem does not have) ---------------------------
+    /// State or control of that name at time t (Lagrange polynomial, as state(t)/control(t)).
+    [[nodiscard]] double state(double t, std::string_view name) const;
+    [[nodiscard]] double control(double t, std::string_view name) const;
+    /// x(t0) and x(tf) of the named state.
+    [[nodiscard]] double initial_state(std::string_view name) const;
+    [[nodiscard]] double final_state(std::string_view name) const;
+    /// Static parameter by name.
+    [[nodiscard]] double parameter(std::string_view name) const;
+    /// Value of the named integral constraint.
+    [[nodiscard]] double integral(std::string_view name) const;
+    /// Node values of a state or control (the segments' nodes in time order, interface points
+    /// once per segment, as `node_times`).
+    [[nodiscard]] std::vector<double> history(std::string_view name) const;
+    /// Times of all nodes in order (interface points once per segment).
+    [[nodiscard]] std::vector<double> node_times() const;
+
 private:
     [[nodiscard]] int segment_of(double t) const;
     [[nodiscard]] Eigen::VectorXd interpolate(double t, int which) const;
@@ -243,6 +280,20 @@ private:
 /// Write the solution as CSV: t, segment, node, states, controls, costates (lambda_<state>),
 /// path constraints. Throws IoError.
 void write_csv(const Solution& solution, const std::filesystem::path& file);
+
+/// The solution's outcome by name, as text: problem, status, objective (the user's sign; "max"
+/// when maximised), t0, tf, parameters, x(t0) and x(tf) of every state, integral constraints.
+[[nodiscard]] std::string summary(const Solution& solution);
+/// The same as a JSON object: {"problem", "status", "converged", "resolved", "sense",
+/// "objective", "initial_time", "final_time", "iterations", "parameters": {name: value},
+/// "initial_states": {name: value}, "final_states": {name: value}, "integrals": {name: value},
+/// "nodes": {"t": [...], "<state or control>": [...]}}.
+[[nodiscard]] std::string to_json(const Solution& solution);
+
+/// Check a guess against the problem's bounds: the states and controls at the guess's samples
+/// (its nodes for a previous solution), the parameters, t0 and tf. InputError naming the first
+/// variable outside its bounds, the value, the time and the bounds.
+void validate_guess(const ProblemInfo& info, const Guess& guess);
 
 /// Largest discrepancies between the NLP's analytic (AD) derivatives and central finite
 /// differences at the guess's starting point, perturbed by a seeded random fraction of each
