@@ -526,6 +526,29 @@ TEST(Ergonomics, TwentyFiveStatesUseTheRunTimeSizedAdScalar) {
     std::printf("25-state chain, 6 points: %d iterations, %.3f s CPU\n", s.iterations, s.cpu_time);
 }
 
+/// The same problems with the run-time-sized AD path opted out (a shorter compile).
+struct FixedSizeChain : IntegratorChain {
+    static constexpr bool fixed_size_ad = true;
+};
+struct FixedSizeEnergy : MinimumEnergy {
+    static constexpr bool fixed_size_ad = true;
+};
+
+TEST(Ergonomics, FixedSizeAdOptOutKeepsTheFixedScalarsAndTheirLimit) {
+    const std::string e = input_error([] { (void)make_model(FixedSizeChain{}); });
+    EXPECT_NE(e.find("25 states, 12 controls and 0 parameters exceed the fixed-size AD capacity "
+                     "of 40 directions per node"),
+              std::string::npos)
+        << e;
+    const ProblemInfo info = MinimumEnergy{}.info();
+    const Guess guess = Guess::linear(info, 0.0, 1.0, {{"x", 0.0, 1.0}});
+    const Solution a = solve(*make_model(FixedSizeEnergy{}), Mesh::uniform(1, 8), guess);
+    const Solution b = solve(*make_model(MinimumEnergy{}), Mesh::uniform(1, 8), guess);
+    ASSERT_TRUE(a.resolved());
+    EXPECT_EQ(a.objective, b.objective);
+    EXPECT_EQ(a.iterations, b.iterations);
+}
+
 TEST(Ergonomics, RunTimeSizedScalarsMatchTheFixedOnes) {
     // the same function on Hyper<8> and Hyper<kDynamic>, Fwd<double, 8> and Fwd<double,
     // kDynamic>: the same arithmetic, so the same bits

@@ -5,7 +5,9 @@
 /// by forward AD: first derivatives with `Ad1` (ad.hpp), exact Hessians with `AdH` (hyper.hpp);
 /// an evaluation with more than kMaxDirections local variables uses their run-time-sized
 /// versions `AdDyn1` and `AdDynH` instead (heap storage sized to the problem), so a problem of
-/// any size works and problems within kMaxDirections keep the fixed-size scalars.
+/// any size works and problems within kMaxDirections keep the fixed-size scalars. A problem type
+/// with `static constexpr bool fixed_size_ad = true;` skips the run-time-sized path (see
+/// detail::fixed_size_ad).
 /// Nothing is recorded between calls, so derivatives follow the branches taken at each evaluation.
 ///
 /// Local variables of a collocation node, in order: x (nx), u (nu), p (np), t0, tf, then the
@@ -23,8 +25,10 @@
 
 #include <algorithm>
 #include <array>
+#include <concepts>
 #include <memory>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -148,6 +152,22 @@ concept HasInterior = requires(const P& p, std::span<const T> x, const T& t, std
     p.interior(1, x, x, t, e);
 };
 
+/// A problem type that declares `static constexpr bool fixed_size_ad = true;` is differentiated
+/// with the fixed-size scalars only: the run-time-sized path is not instantiated (a shorter
+/// compile for a large model), and more than kMaxDirections local variables is an InputError.
+template <class P>
+concept DeclaresFixedSizeAd = requires {
+    { P::fixed_size_ad } -> std::convertible_to<bool>;
+};
+template <class P>
+constexpr bool fixed_size_ad() {
+    if constexpr (DeclaresFixedSizeAd<P>) {
+        return P::fixed_size_ad;
+    } else {
+        return false;
+    }
+}
+
 }  // namespace detail
 
 /// Second-order AD scalar of the Hessians (value, gradient, packed symmetric Hessian).
@@ -183,6 +203,18 @@ class ProblemModel final : public Model {
 public:
     explicit ProblemModel(P problem) : problem_(std::move(problem)), info_(problem_.info()) {
         info_.validate();
+        const int nx = info_.n_states();
+        if (detail::fixed_size_ad<P>() &&
+            (nx + info_.n_controls() + info_.n_parameters() + 4 > kMaxDirections ||
+             2 * nx + info_.n_parameters() + 2 > kMaxDirections)) {
+            throw InputError("optimal control problem '" + info_.name + "': " + std::to_string(nx) +
+                             " states, " + std::to_string(info_.n_controls()) + " controls and " +
+                             std::to_string(info_.n_parameters()) +
+                             " parameters exceed the fixed-size AD capacity of " +
+                             std::to_string(kMaxDirections) +
+                             " directions per node, expected fixed_size_ad = false for a problem "
+                             "of this size");
+        }
         if (info_.n_path() > 0 && !detail::HasPath<P, double>) {
             throw InputError("optimal control problem '" + info_.name +
                              "' declares path constraints but has no path() function");
@@ -224,7 +256,9 @@ public:
     }
     void node_jacobian(std::span<const double> v, const NodePlacement& at, std::span<double> out,
                        std::span<double> jac) const override {
-        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+        if constexpr (detail::fixed_size_ad<P>()) {
+            node_jacobian_as<Ad1>(v, at, out, jac);
+        } else if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
             node_jacobian_as<Ad1>(v, at, out, jac);
         } else {
             node_jacobian_as<AdDyn1>(v, at, out, jac);
@@ -232,7 +266,9 @@ public:
     }
     void node_hessian(std::span<const double> v, const NodePlacement& at,
                       std::span<const double> weights, std::span<double> hess) const override {
-        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+        if constexpr (detail::fixed_size_ad<P>()) {
+            node_hessian_as<AdH>(v, at, weights, hess);
+        } else if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
             node_hessian_as<AdH>(v, at, weights, hess);
         } else {
             node_hessian_as<AdDynH>(v, at, weights, hess);
@@ -244,7 +280,9 @@ public:
     }
     void boundary_jacobian(std::span<const double> v, std::span<double> out,
                            std::span<double> jac) const override {
-        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+        if constexpr (detail::fixed_size_ad<P>()) {
+            boundary_jacobian_as<Ad1>(v, out, jac);
+        } else if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
             boundary_jacobian_as<Ad1>(v, out, jac);
         } else {
             boundary_jacobian_as<AdDyn1>(v, out, jac);
@@ -252,7 +290,9 @@ public:
     }
     void boundary_hessian(std::span<const double> v, std::span<const double> weights,
                           std::span<double> hess) const override {
-        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+        if constexpr (detail::fixed_size_ad<P>()) {
+            boundary_hessian_as<AdH>(v, weights, hess);
+        } else if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
             boundary_hessian_as<AdH>(v, weights, hess);
         } else {
             boundary_hessian_as<AdDynH>(v, weights, hess);
@@ -265,7 +305,9 @@ public:
     }
     void interior_jacobian(int junction, std::span<const double> v, std::span<double> out,
                            std::span<double> jac) const override {
-        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+        if constexpr (detail::fixed_size_ad<P>()) {
+            interior_jacobian_as<Ad1>(junction, v, out, jac);
+        } else if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
             interior_jacobian_as<Ad1>(junction, v, out, jac);
         } else {
             interior_jacobian_as<AdDyn1>(junction, v, out, jac);
@@ -273,7 +315,9 @@ public:
     }
     void interior_hessian(int junction, std::span<const double> v, std::span<const double> weights,
                           std::span<double> hess) const override {
-        if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
+        if constexpr (detail::fixed_size_ad<P>()) {
+            interior_hessian_as<AdH>(junction, v, weights, hess);
+        } else if (v.size() <= static_cast<std::size_t>(kMaxDirections)) {
             interior_hessian_as<AdH>(junction, v, weights, hess);
         } else {
             interior_hessian_as<AdDynH>(junction, v, weights, hess);
