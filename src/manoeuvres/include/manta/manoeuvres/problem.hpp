@@ -53,6 +53,9 @@ struct EventDef {
 /// The optimal-control problem of a manoeuvre (satisfies optimal::OptimalControlProblem).
 class ManoeuvreProblem {
 public:
+    /// The manoeuvre models fit the fixed-size derivative types (40 directions): the run-time-sized
+    /// path of optimal (larger problems) is not compiled for them (compile time).
+    static constexpr bool fixed_size_ad = true;
     /// Trims the entry (if asked), resolves the final conditions against it and sets bounds.
     /// InputError/ConvergenceError when the entry cannot be trimmed or a setting is inconsistent.
     ManoeuvreProblem(flightdyn::FlightModel model, ManoeuvreSpec spec);
