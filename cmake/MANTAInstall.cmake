@@ -37,9 +37,16 @@ set(_manta_dep_table
 # them (manta_find_library, cmake/MANTAFindLibrary.cmake): name, header, library.
 set(_manta_plain_libraries "cgns|cgnslib.h|cgns" "metis|metis.h|metis" "gmsh|gmsh.h|gmsh")
 
-# Flags of the dependencies without a pkg-config module, for the .pc files.
-set(MPI_CXX_SKIP_MPICXX ON)
-find_package(MPI QUIET COMPONENTS CXX)
+# Flags of the dependencies without a pkg-config module, for the .pc files. MPI is found by
+# src/parallel in its own scope: found again here in a function, so that no MPI variable
+# reaches the folders configured after this file.
+function(_manta_mpi_libraries out)
+    set(MPI_CXX_SKIP_MPICXX ON)
+    find_package(MPI QUIET COMPONENTS CXX)
+    string(REPLACE ";" " " libs "${MPI_CXX_LIBRARIES}")
+    set(${out} "${libs}" PARENT_SCOPE)
+endfunction()
+_manta_mpi_libraries(_manta_pc_libs_MPI)
 set(_manta_pc_cflags_Boost "")
 foreach(d IN LISTS Boost_INCLUDE_DIRS)
     if(NOT d IN_LIST CMAKE_CXX_IMPLICIT_INCLUDE_DIRECTORIES)
@@ -48,7 +55,6 @@ foreach(d IN LISTS Boost_INCLUDE_DIRS)
 endforeach()
 set(_manta_pc_libs_Boost "")
 set(_manta_pc_cflags_MPI "")
-string(REPLACE ";" " " _manta_pc_libs_MPI "${MPI_CXX_LIBRARIES}")
 foreach(entry IN LISTS _manta_plain_libraries)
     string(REPLACE "|" ";" entry "${entry}")
     list(GET entry 0 name)
