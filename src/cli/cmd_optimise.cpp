@@ -2,11 +2,13 @@
 /// `manta optimise`: optimal control by Legendre–Gauss–Lobatto collocation and IPOPT
 /// (docs/optimal-control.md): the solver's validation problems (--problem), and aircraft
 /// manoeuvres (--aircraft, --manoeuvre; docs/manoeuvres.md) with trajectory CSV, summary JSON
-/// and time-history plots.
+/// and time-history plots; with --adaptive, error-driven ph mesh refinement
+/// (optimal::solve_adaptive) from the problem's or the manoeuvre's mesh.
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +28,7 @@
 #include "manta/manoeuvres/manoeuvre.hpp"
 #include "manta/manoeuvres/problem.hpp"
 #include "manta/optimal/problems.hpp"
+#include "manta/optimal/refine.hpp"
 #include "manta/optimal/solve.hpp"
 #include "svg_plot.hpp"
 
@@ -47,6 +50,11 @@ struct OptimiseOptions {
     int segments = 1;
     bool free_breaks = false;
     bool refine = false;
+    bool adaptive = false;             ///< error-driven ph refinement (solve_adaptive)
+    double adaptive_tolerance = 1e-6;  ///< its relative error target per segment
+    int max_passes = 10;               ///< its most solves, the first included
+    int min_nodes = 4;                 ///< its points per segment created by a split
+    int max_nodes = 12;                ///< its most points per segment by degree increase
     std::string hessian = "exact";
     double tolerance = 1e-8;
     int max_iterations = 3000;
@@ -69,6 +77,64 @@ std::vector<std::pair<std::string, std::string>> ipopt_pairs(const std::vector<s
         r.emplace_back(s.substr(0, eq), s.substr(eq + 1));
     }
     return r;
+}
+
+/// Options of the error-driven refinement from the command line (the library's defaults else).
+optimal::RefinementOptions refinement_options(const OptimiseOptions& o) {
+    optimal::RefinementOptions ro;
+    ro.tolerance = o.adaptive_tolerance;
+    ro.max_passes = o.max_passes;
+    ro.min_nodes = o.min_nodes;
+    ro.max_nodes = o.max_nodes;
+    return ro;
+}
+
+/// The refinement passes for --json and summary.json, and the report as printed.
+nlohmann::json refinement_fields(const optimal::AdaptiveSolution& a,
+                                 const optimal::RefinementOptions& ro) {
+    nlohmann::json passes = nlohmann::json::array();
+    for (const optimal::RefinementPass& p : a.passes) {
+        passes.push_back({{"pass", p.pass},
+                          {"segments", p.mesh.n_segments()},
+                          {"total_nodes", p.total_nodes},
+                          {"nodes_per_segment", p.mesh.nodes},
+                          {"max_error", p.max_error},
+                          {"segment_errors", p.segment_errors},
+                          {"iterations", p.iterations},
+                          {"cpu_time", p.cpu_s},
+                          {"status", optimal::to_string(p.status)},
+                          {"objective", p.objective},
+                          {"final_time", p.final_time}});
+    }
+    return {{"status", optimal::to_string(a.status)},
+            {"status_text", a.status_text},
+            {"tolerance", ro.tolerance},
+            {"max_passes", ro.max_passes},
+            {"min_nodes", ro.min_nodes},
+            {"max_nodes", ro.max_nodes},
+            {"passes", passes},
+            {"report", optimal::refinement_report(a)}};
+}
+
+/// LGL points of a mesh (segments' points summed).
+int total_nodes(const optimal::Mesh& mesh) {
+    int n = 0;
+    for (const int k : mesh.nodes) n += k;
+    return n;
+}
+
+/// The solution of the last pass with the IPOPT iterations and times of every pass (and of the
+/// `previous` solve, when the refinement started from one) added up.
+optimal::Solution adaptive_totals(const optimal::AdaptiveSolution& a,
+                                  const optimal::Solution* previous = nullptr) {
+    optimal::Solution s = a.solution;
+    s.iterations = previous ? previous->iterations : 0;
+    s.cpu_time = previous ? previous->cpu_time : 0.0;
+    for (const optimal::RefinementPass& p : a.passes) {
+        s.iterations += p.iterations;
+        s.cpu_time += p.cpu_s;
+    }
+    return s;
 }
 
 /// A validation problem, its guess and its known optimum (if any).
@@ -261,10 +327,50 @@ int run_manoeuvre(const OptimiseOptions& o) {
         lock.emplace(out, "optimise");
         so.failure_csv = out / "best_iterate.csv";
     }
-    const manoeuvres::ManoeuvreResult r = manoeuvres::fly(problem, so);
+    const auto wall_start = std::chrono::steady_clock::now();
+    manoeuvres::ManoeuvreResult r = manoeuvres::fly(problem, so);
+    // --adaptive: error-driven refinement from the manoeuvre's mesh, started from its solution
+    std::optional<optimal::AdaptiveSolution> adaptive;
+    const optimal::RefinementOptions ro = refinement_options(o);
+    if (o.adaptive && r.solution.converged()) {
+        const auto model = manoeuvres::make_model(problem);
+        adaptive = optimal::solve_adaptive(*model, r.mesh,
+                                           optimal::Guess::from_solution(r.solution), so, ro);
+        const optimal::Solution first = r.solution;
+        r.solution = adaptive_totals(*adaptive, &first);
+        r.solution.wall_time =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        r.mesh = adaptive->mesh;
+    }
     const optimal::Solution& s = r.solution;
+    // the phases: the refined mesh keeps the intermediate condition at its own junction, not at
+    // the middle segment (ManoeuvreProblem::phase_of_segment)
+    const int K = r.mesh.n_segments();
+    auto phase_of_segment = [&](int k) {
+        if (adaptive && !adaptive->interior_junctions.empty()) {
+            return k < adaptive->interior_junctions.front() ? 0 : 1;
+        }
+        return problem.phase_of_segment(k, K);
+    };
+    // the same for the `phase` column of a trajectory: a row at the junction time belongs to
+    // the first phase in the node trajectory (the junction closes its segment there) and to the
+    // second in the dense one
+    auto set_phases = [&](manoeuvres::Trajectory& t, bool junction_in_second) {
+        if (!adaptive || adaptive->interior_junctions.empty()) return;
+        const double tj = s.breaks[static_cast<std::size_t>(adaptive->interior_junctions.front())];
+        const auto col = static_cast<std::size_t>(
+            std::find(t.columns.begin(), t.columns.end(), "phase") - t.columns.begin());
+        const auto tcol = static_cast<std::size_t>(
+            std::find(t.columns.begin(), t.columns.end(), "t") - t.columns.begin());
+        if (col >= t.columns.size() || tcol >= t.columns.size()) return;
+        for (auto& row : t.rows) {
+            const bool second = junction_in_second ? row[tcol] >= tj : row[tcol] > tj;
+            row[col] = second ? 1.0 : 0.0;
+        }
+    };
     manoeuvres::Trajectory traj = manoeuvres::trajectory(problem, s);
     traj.metadata.insert(traj.metadata.begin() + 1, {"aircraft", o.aircraft});
+    set_phases(traj, false);
     const manoeuvres::ConstraintCheck c = manoeuvres::check(problem, traj);
     nlohmann::json j = solution_fields(s, r.mesh, hessian);
     j["manoeuvre"] = spec.name;
@@ -272,18 +378,22 @@ int run_manoeuvre(const OptimiseOptions& o) {
     j["aero_tables"] = o.tables.empty() ? std::string("aircraft file") : o.tables;
     j["mass_kg"] = problem.model().mass.mass;
     j["nodes"] = s.n_nodes();
-    j["nodes_per_segment"] = spec.nodes;
+    if (adaptive) {
+        j["nodes_per_segment"] = r.mesh.nodes;
+        j["refinement"] = refinement_fields(*adaptive, ro);
+    } else {
+        j["nodes_per_segment"] = spec.nodes;
+    }
     j["mass_case"] = traj.meta("mass_case");
     j["coarse_iterations"] = r.coarse_iterations;
     {
         // phases: names and time spans (the intermediate condition ends the first)
         const auto names = problem.phase_names();
         nlohmann::json ph = nlohmann::json::array();
-        const int K = r.mesh.n_segments();
         for (std::size_t q = 0; q < names.size(); ++q) {
             double t0 = s.final_time, t1 = s.initial_time;
             for (int k = 0; k < K; ++k) {
-                if (problem.phase_of_segment(k, K) != static_cast<int>(q)) continue;
+                if (phase_of_segment(k) != static_cast<int>(q)) continue;
                 t0 = std::min(t0, s.breaks[static_cast<std::size_t>(k)]);
                 t1 = std::max(t1, s.breaks[static_cast<std::size_t>(k + 1)]);
             }
@@ -303,6 +413,7 @@ int run_manoeuvre(const OptimiseOptions& o) {
         manoeuvres::write_trajectory_csv(traj, out / "trajectory.csv");
         manoeuvres::Trajectory dense = manoeuvres::dense_trajectory(problem, s, 0.02);
         dense.metadata.insert(dense.metadata.begin() + 1, {"aircraft", o.aircraft});
+        set_phases(dense, true);
         manoeuvres::write_trajectory_csv(dense, out / "trajectory_dense.csv");
         if (s.converged()) optimal::write_csv(s, out / "solution.csv");
         write_plots(traj, spec.name, out);
@@ -311,6 +422,10 @@ int run_manoeuvre(const OptimiseOptions& o) {
     if (o.json) {
         print_json(j);
     } else {
+        if (adaptive) {
+            fmt::print("error-driven mesh refinement (tolerance {:.3g}):\n{}", ro.tolerance,
+                       optimal::refinement_report(*adaptive));
+        }
         fmt::print("{}: {} in {} IPOPT iterations, {:.2f} s CPU\n", spec.name, s.status_text,
                    s.iterations, s.cpu_time);
         fmt::print("  final time               {:.6g} s\n", s.final_time);
@@ -319,6 +434,10 @@ int run_manoeuvre(const OptimiseOptions& o) {
         fmt::print("  alpha max {:.3f} deg, nz [{:.3f}, {:.3f}], heading change {:.3f} deg\n",
                    c.alpha_max_deg, c.load_factor_min, c.load_factor_max,
                    c.final_heading_change_deg);
+        if (adaptive) {
+            fmt::print("  mesh                     {} segment(s), {} LGL points\n", K,
+                       total_nodes(r.mesh));
+        }
         if (!out.empty()) fmt::print("  written to               {}\n", out.string());
     }
     if (!s.converged()) {
@@ -326,6 +445,10 @@ int run_manoeuvre(const OptimiseOptions& o) {
         return 1;
     }
     if (!s.resolved()) fmt::print(stderr, "warning: {}: {}\n", spec.name, s.status_text);
+    if (adaptive && adaptive->status != optimal::RefinementStatus::tolerance_met) {
+        fmt::print(stderr, "warning: {}: mesh refinement {}: {}\n", spec.name,
+                   optimal::to_string(adaptive->status), adaptive->status_text);
+    }
     return 0;
 }
 
@@ -357,8 +480,32 @@ void add_optimise(CLI::App& app, Action& action) {
     cmd->add_option("--segments", o->segments, "Number of equal segments, hp (default 1)")
         ->check(integer_in(1, 200));
     cmd->add_flag("--free-breaks", o->free_breaks, "Segment breaks are decision variables");
-    cmd->add_flag("--refine", o->refine,
-                  "After solving, break the mesh where a control jumps and re-solve (hp)");
+    auto* refine_opt =
+        cmd->add_flag("--refine", o->refine,
+                      "After solving, break the mesh where a control jumps and re-solve (hp)");
+    auto* adaptive_opt = cmd->add_flag(
+        "--adaptive", o->adaptive,
+        "Error-driven ph mesh refinement from the problem's or manoeuvre's mesh: split segments "
+        "or raise their degree until every segment's error estimate is below --adaptive-tol "
+        "(docs/optimal-control.md)");
+    adaptive_opt->excludes(refine_opt);
+    cmd->add_option("--adaptive-tol", o->adaptive_tolerance,
+                    "--adaptive: relative error target per segment (default 1e-6)")
+        ->check(real_positive(1.0))
+        ->needs(adaptive_opt);
+    cmd->add_option("--max-passes", o->max_passes,
+                    "--adaptive: most solves, the first mesh's included (default 10)")
+        ->check(integer_in(1, 100))
+        ->needs(adaptive_opt);
+    cmd->add_option("--min-nodes", o->min_nodes,
+                    "--adaptive: LGL points of each segment a split creates (default 4)")
+        ->check(integer_in(2, 400))
+        ->needs(adaptive_opt);
+    cmd->add_option("--max-nodes", o->max_nodes,
+                    "--adaptive: most LGL points a segment reaches by raising its degree "
+                    "(default 12)")
+        ->check(integer_in(2, 400))
+        ->needs(adaptive_opt);
     auto* hessian_opt =
         cmd->add_option("--hessian", o->hessian, "exact (default) or limited-memory")
             ->check(CLI::IsMember({"exact", "limited-memory"}));
@@ -385,6 +532,13 @@ void add_optimise(CLI::App& app, Action& action) {
         if (problem_opt->count() == 0 && aircraft_opt->count() == 0) {
             throw CLI::ValidationError("optimise",
                                        "give --problem NAME, or --aircraft FILE --manoeuvre FILE");
+        }
+        if (o->adaptive && o->max_nodes < o->min_nodes) {
+            throw CLI::ValidationError("optimise",
+                                       fmt::format("--max-nodes {} is below --min-nodes "
+                                                   "{}; expected --max-nodes >= "
+                                                   "--min-nodes",
+                                                   o->max_nodes, o->min_nodes));
         }
         action = [o]() -> int {
             if (!o->aircraft.empty()) return run_manoeuvre(*o);
@@ -414,7 +568,20 @@ void add_optimise(CLI::App& app, Action& action) {
                 lock.emplace(out, "optimise");
                 so.failure_csv = out / "best_iterate.csv";
             }
-            optimal::Solution s = optimal::solve(*c.model, mesh, c.guess, so);
+            const auto wall_start = std::chrono::steady_clock::now();
+            std::optional<optimal::AdaptiveSolution> adaptive;
+            const optimal::RefinementOptions ro = refinement_options(*o);
+            optimal::Solution s;
+            if (o->adaptive) {
+                adaptive = optimal::solve_adaptive(*c.model, mesh, c.guess, so, ro);
+                s = adaptive_totals(*adaptive);
+                s.wall_time =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start)
+                        .count();
+                mesh = adaptive->mesh;
+            } else {
+                s = optimal::solve(*c.model, mesh, c.guess, so);
+            }
             if (o->refine && s.converged()) {
                 const optimal::Mesh refined = optimal::refine_at_control_jumps(s, o->nodes);
                 if (refined.n_segments() > mesh.n_segments() || !mesh.free_breaks) {
@@ -428,7 +595,12 @@ void add_optimise(CLI::App& app, Action& action) {
                     s.iterations += its;
                 }
             }
-            const nlohmann::json j = summary(*o, s, c, mesh);
+            nlohmann::json j = summary(*o, s, c, mesh);
+            if (adaptive) {
+                j["nodes"] = s.n_nodes();
+                j["nodes_per_segment"] = mesh.nodes;
+                j["refinement"] = refinement_fields(*adaptive, ro);
+            }
             if (!out.empty()) {
                 if (s.converged()) optimal::write_csv(s, out / "solution.csv");
                 core::write_file_atomic(out / "summary.json", j.dump(2) + '\n');
@@ -436,6 +608,10 @@ void add_optimise(CLI::App& app, Action& action) {
             if (o->json) {
                 print_json(j);
             } else {
+                if (adaptive) {
+                    fmt::print("error-driven mesh refinement (tolerance {:.3g}):\n{}", ro.tolerance,
+                               optimal::refinement_report(*adaptive));
+                }
                 fmt::print("{}: {} in {} IPOPT iterations, {:.3f} s CPU\n", o->problem,
                            s.status_text, s.iterations, s.cpu_time);
                 fmt::print("  final time               {:.10g} s\n", s.final_time);
@@ -446,8 +622,13 @@ void add_optimise(CLI::App& app, Action& action) {
                 fmt::print("  max constraint violation {:.3e}\n", s.max_violation);
                 fmt::print("  re-simulation error      {:.3e} (scaled)\n",
                            s.resimulation.max_scaled_error);
-                fmt::print("  mesh                     {} segment(s) x {} LGL points\n",
-                           mesh.n_segments(), o->nodes);
+                if (adaptive) {
+                    fmt::print("  mesh                     {} segment(s), {} LGL points\n",
+                               mesh.n_segments(), total_nodes(mesh));
+                } else {
+                    fmt::print("  mesh                     {} segment(s) x {} LGL points\n",
+                               mesh.n_segments(), o->nodes);
+                }
                 if (!out.empty()) fmt::print("  written to               {}\n", out.string());
             }
             if (!s.converged()) {
@@ -455,6 +636,10 @@ void add_optimise(CLI::App& app, Action& action) {
                 return 1;
             }
             if (!s.resolved()) fmt::print(stderr, "warning: {}\n", s.status_text);
+            if (adaptive && adaptive->status != optimal::RefinementStatus::tolerance_met) {
+                fmt::print(stderr, "warning: mesh refinement {}: {}\n",
+                           optimal::to_string(adaptive->status), adaptive->status_text);
+            }
             return 0;
         };
     });
