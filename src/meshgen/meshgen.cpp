@@ -111,7 +111,7 @@ struct SizeField {
 /// Mesh sizes of one level, as fractions of the local chord (lifting surfaces) or of the largest
 /// fuselage width.
 struct Sizes {
-    double le = 0.036, te = 0.02, tip = 0.06, cs = 0.04, surface = 0.14, fuselage = 0.15,
+    double le = 0.015, te = 0.015, tip = 0.06, cs = 0.04, surface = 0.07, fuselage = 0.15,
            nose = 0.04, growth = 0.22, farfield = 0.2;  // farfield: fraction of the radius
 };
 
