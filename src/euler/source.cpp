@@ -94,6 +94,7 @@ std::unique_ptr<EulerSource> EulerSource::from_files(const std::filesystem::path
         std::move(m.mesh), std::move(setup), mesh.filename().string(), cfg.control_surfaces,
         config.empty() ? std::string("the default CFD configuration") : config.string());
     source->set_unsteady_settings(cfg.mach, cfg.unsteady);
+    source->set_unsteady_mesh_motion(cfg.mesh_motion, cfg.rigid_radius, cfg.fixed_radius);
     return source;
 }
 

@@ -3,6 +3,8 @@
 /// time-accurate run of `manta cfd --motion` (case.hpp: `motion_stepping`, `place_mesh_motion`,
 /// `motion_sample`) as an aero::UnsteadyRun, serial, on the source's own copy of the mesh, started
 /// from the steady solution at the motion's first instant, saved and restored as one binary file.
+/// The mesh moves as the configuration's `unsteady.mesh_motion` says (rigid, or deforming with
+/// its radii), as in `manta cfd --motion`; the mode is part of the saved run's fingerprint.
 
 #include <fmt/format.h>
 
@@ -10,6 +12,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <string_view>
 
 #include "detail/binary_io.hpp"
 #include "manta/core/error.hpp"
@@ -28,6 +32,18 @@ constexpr double rad_to_deg = 57.29577951308232;
 constexpr char run_magic[9] = "MANTAES1";
 constexpr const char* motion_label = "euler source: motion";
 constexpr std::array<const char*, 3> mode_names{"elevator", "aileron", "rudder"};
+/// The fingerprint's last part: the mesh motion (a saved run of another one is refused by name).
+constexpr const char* mesh_motion_key = " | mesh_motion=";
+
+/// "rigid", or "deforming (rigid_radius R m, fixed_radius F m)" (0: the defaults).
+std::string mesh_motion_words(const meshmotion::DeformationOptions& o) {
+    if (o.body == meshmotion::BodyMotion::rigid) return "rigid";
+    auto radius = [](double r) {
+        return r > 0.0 ? core::format_exact(r) + " m" : std::string("default");
+    };
+    return fmt::format("deforming (rigid_radius {}, fixed_radius {})", radius(o.rigid_radius),
+                       radius(o.fixed_radius));
+}
 
 }  // namespace
 
@@ -54,8 +70,21 @@ public:
                               settings.dt > 0.0 ? std::optional<double>(settings.dt) : std::nullopt,
                               source.unsteady_inner_, source.surfaces_, "euler source: time step",
                               "the motion");
-        mesh_motion_ =
-            place_mesh_motion(mesh_, motion_, setup_.reference, motion_label, source.surfaces_);
+        // The mesh motion of `manta cfd --motion` (case.cpp): the configuration's
+        // unsteady.mesh_motion and radii, the wall markers moving with the body in the deforming
+        // mode, the symmetry planes sliding (there, and under control surfaces that touch them).
+        meshmotion::DeformationOptions options;
+        options.body = source.unsteady_body_;
+        options.rigid_radius = source.unsteady_rigid_radius_;
+        options.fixed_radius = source.unsteady_fixed_radius_;
+        for (std::size_t m = 0; m < setup_.roles.size(); ++m) {
+            if (setup_.roles[m] == BoundaryKind::wall)
+                options.wall_markers.push_back(mesh_.markers()[m]);
+            else if (setup_.roles[m] == BoundaryKind::symmetry)
+                options.symmetry_markers.push_back(mesh_.markers()[m]);
+        }
+        mesh_motion_ = place_mesh_motion(mesh_, motion_, setup_.reference, motion_label,
+                                         source.surfaces_, options);
         const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
         solver_ = std::make_unique<UnsteadySolver>(domain, comm_, setup_, st_.time);
         solver_->set_moving_mesh({&mesh_, &dual_, [this](double, long step, Eigen::Matrix3Xd& x) {
@@ -68,6 +97,8 @@ public:
             source.fingerprint_, st_.fingerprint, core::format_exact(setup_.flow.mach),
             start_ == UnsteadyStart::steady ? "steady" : "free_stream", t.order, t.max_inner,
             t.inner_drop, t.coefficient_window, t.coefficient_tolerance);
+        mesh_motion_text_ = mesh_motion_words(options);
+        fingerprint_ += mesh_motion_key + mesh_motion_text_;
     }
 
     [[nodiscard]] const aero::UnsteadySample& current() const override {
@@ -124,6 +155,14 @@ public:
         detail::BinIn b{buf, 8, name, "saved Euler-source run",
                         "expected a file written by the same source's save"};
         const std::string fp = b.get_string();
+        const std::size_t at = fp.rfind(mesh_motion_key);
+        const std::size_t here = fingerprint_.rfind(mesh_motion_key);
+        if (fp != fingerprint_ && at != std::string::npos &&
+            fp.compare(0, at, fingerprint_, 0, here) == 0)
+            throw InputError(fmt::format(
+                "{}: a run of unsteady.mesh_motion {}; this run's configuration has {}; expected "
+                "a saved run of the same mesh motion (or start this one over)",
+                name, fp.substr(at + std::string_view(mesh_motion_key).size()), mesh_motion_text_));
         if (fp != fingerprint_)
             throw InputError(fmt::format(
                 "{}: a run of another mesh, configuration, motion or time step ({}); this run: "
@@ -298,6 +337,7 @@ private:
     std::unique_ptr<UnsteadySolver> solver_;
     UnsteadyStart start_ = UnsteadyStart::steady;
     std::string fingerprint_;
+    std::string mesh_motion_text_;  ///< the mesh motion in words (the fingerprint's last part)
     mutable bool started_ = false;
     mutable aero::UnsteadySample sample_;
 };

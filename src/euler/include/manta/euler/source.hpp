@@ -14,7 +14,8 @@
 ///
 /// Along a motion (`start_unsteady`, docs/euler.md#as-an-unsteady-source) the source runs the
 /// time-accurate solver of `manta cfd --motion` on its own copy of the mesh (unsteady_source.cpp),
-/// with the configuration's control surfaces and `unsteady:` settings.
+/// with the configuration's control surfaces and `unsteady:` settings (the mesh motion rigid or
+/// deforming, as `unsteady.mesh_motion` says).
 
 #include <array>
 #include <filesystem>
@@ -107,6 +108,17 @@ public:
         unsteady_inner_ = inner;
     }
     void set_unsteady_start(UnsteadyStart s) { unsteady_start_ = s; }
+    /// The configuration's `unsteady.mesh_motion`, `unsteady.rigid_radius` and
+    /// `unsteady.fixed_radius` [m] (0: meshmotion::DeformationOptions' defaults), for
+    /// `start_unsteady` (`from_files` sets them; rigid otherwise). As `manta cfd --motion`: in the
+    /// deforming mode the wall markers move with the body, the far field stays and the symmetry
+    /// planes slide (docs/mesh-motion.md, "Deforming body motion").
+    void set_unsteady_mesh_motion(meshmotion::BodyMotion body, double rigid_radius = 0.0,
+                                  double fixed_radius = 0.0) {
+        unsteady_body_ = body;
+        unsteady_rigid_radius_ = rigid_radius;
+        unsteady_fixed_radius_ = fixed_radius;
+    }
     /// Nodes of the mesh.
     [[nodiscard]] mesh::Index n_nodes() const { return mesh_.n_nodes(); }
 
@@ -136,6 +148,8 @@ private:
     std::optional<double> unsteady_mach_;
     UnsteadySettings unsteady_inner_;
     UnsteadyStart unsteady_start_ = UnsteadyStart::steady;
+    meshmotion::BodyMotion unsteady_body_ = meshmotion::BodyMotion::rigid;
+    double unsteady_rigid_radius_ = 0.0, unsteady_fixed_radius_ = 0.0;  ///< [m]
     std::size_t cache_size_ = 16;
     mutable std::mutex mutex_;
     mutable std::vector<Cached> cache_;
