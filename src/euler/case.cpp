@@ -204,6 +204,23 @@ MotionStepping motion_stepping(const aero::Motion& motion, const std::string& sr
     return st;
 }
 
+meshmotion::DeformationOptions motion_deformation(const mesh::Mesh& mesh,
+                                                  const std::vector<BoundaryKind>& roles,
+                                                  meshmotion::BodyMotion body, double rigid_radius,
+                                                  double fixed_radius) {
+    meshmotion::DeformationOptions options;
+    options.body = body;
+    options.rigid_radius = rigid_radius;
+    options.fixed_radius = fixed_radius;
+    for (std::size_t m = 0; m < roles.size(); ++m) {
+        if (roles[m] == BoundaryKind::wall)
+            options.wall_markers.push_back(mesh.markers()[m]);
+        else if (roles[m] == BoundaryKind::symmetry)
+            options.symmetry_markers.push_back(mesh.markers()[m]);
+    }
+    return options;
+}
+
 std::unique_ptr<meshmotion::MeshMotion> place_mesh_motion(
     const mesh::Mesh& mesh, const aero::Motion& motion, const ReferenceValues& reference,
     const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
@@ -614,18 +631,10 @@ void CfdCase::Impl::prepare() {
         if (root) {
             try {
                 const mesh::Mesh& whole = comm.size() == 1 ? local.mesh : *global;
-                meshmotion::DeformationOptions options;
-                options.body = cfg.mesh_motion;
-                options.rigid_radius = cfg.rigid_radius;
-                options.fixed_radius = cfg.fixed_radius;
-                for (std::size_t m = 0; m < setup.roles.size(); ++m) {
-                    if (setup.roles[m] == BoundaryKind::wall)
-                        options.wall_markers.push_back(whole.markers()[m]);
-                    else if (setup.roles[m] == BoundaryKind::symmetry)
-                        options.symmetry_markers.push_back(whole.markers()[m]);
-                }
-                mesh_motion = place_mesh_motion(whole, motion, setup.reference, in.motion.string(),
-                                                cfg.control_surfaces, options);
+                mesh_motion = place_mesh_motion(
+                    whole, motion, setup.reference, in.motion.string(), cfg.control_surfaces,
+                    motion_deformation(whole, setup.roles, cfg.mesh_motion, cfg.rigid_radius,
+                                       cfg.fixed_radius));
             } catch (...) {
                 motion_error = std::current_exception();
             }

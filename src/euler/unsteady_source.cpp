@@ -73,16 +73,9 @@ public:
         // The mesh motion of `manta cfd --motion` (case.cpp): the configuration's
         // unsteady.mesh_motion and radii, the wall markers moving with the body in the deforming
         // mode, the symmetry planes sliding (there, and under control surfaces that touch them).
-        meshmotion::DeformationOptions options;
-        options.body = source.unsteady_body_;
-        options.rigid_radius = source.unsteady_rigid_radius_;
-        options.fixed_radius = source.unsteady_fixed_radius_;
-        for (std::size_t m = 0; m < setup_.roles.size(); ++m) {
-            if (setup_.roles[m] == BoundaryKind::wall)
-                options.wall_markers.push_back(mesh_.markers()[m]);
-            else if (setup_.roles[m] == BoundaryKind::symmetry)
-                options.symmetry_markers.push_back(mesh_.markers()[m]);
-        }
+        const meshmotion::DeformationOptions options =
+            motion_deformation(mesh_, setup_.roles, source.unsteady_body_,
+                               source.unsteady_rigid_radius_, source.unsteady_fixed_radius_);
         mesh_motion_ = place_mesh_motion(mesh_, motion_, setup_.reference, motion_label,
                                          source.surfaces_, options);
         const Domain domain{&mesh_, &dual_, mesh_.n_nodes(), &halo_};
