@@ -204,23 +204,6 @@ MotionStepping motion_stepping(const aero::Motion& motion, const std::string& sr
     return st;
 }
 
-meshmotion::DeformationOptions motion_deformation(const mesh::Mesh& mesh,
-                                                  const std::vector<BoundaryKind>& roles,
-                                                  meshmotion::BodyMotion body, double rigid_radius,
-                                                  double fixed_radius) {
-    meshmotion::DeformationOptions options;
-    options.body = body;
-    options.rigid_radius = rigid_radius;
-    options.fixed_radius = fixed_radius;
-    for (std::size_t m = 0; m < roles.size(); ++m) {
-        if (roles[m] == BoundaryKind::wall)
-            options.wall_markers.push_back(mesh.markers()[m]);
-        else if (roles[m] == BoundaryKind::symmetry)
-            options.symmetry_markers.push_back(mesh.markers()[m]);
-    }
-    return options;
-}
-
 std::unique_ptr<meshmotion::MeshMotion> place_mesh_motion(
     const mesh::Mesh& mesh, const aero::Motion& motion, const ReferenceValues& reference,
     const std::string& source, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,

@@ -48,6 +48,23 @@ bool deflects(const ModeDeflections& d) noexcept {
     return std::any_of(d.begin(), d.end(), [](double v) { return v != 0.0; });
 }
 
+meshmotion::DeformationOptions motion_deformation(const mesh::Mesh& mesh,
+                                                  const std::vector<BoundaryKind>& roles,
+                                                  meshmotion::BodyMotion body, double rigid_radius,
+                                                  double fixed_radius) {
+    meshmotion::DeformationOptions options;
+    options.body = body;
+    options.rigid_radius = rigid_radius;
+    options.fixed_radius = fixed_radius;
+    for (std::size_t m = 0; m < roles.size() && m < mesh.markers().size(); ++m) {
+        if (roles[m] == BoundaryKind::wall)
+            options.wall_markers.push_back(mesh.markers()[m]);
+        else if (roles[m] == BoundaryKind::symmetry)
+            options.symmetry_markers.push_back(mesh.markers()[m]);
+    }
+    return options;
+}
+
 std::unique_ptr<meshmotion::MeshMotion> deflection_motion(
     const mesh::Mesh& mesh, const std::vector<BoundaryKind>& roles,
     const Eigen::Vector3d& moment_point,
@@ -56,12 +73,10 @@ std::unique_ptr<meshmotion::MeshMotion> deflection_motion(
     meshmotion::MotionPlacement placement;
     placement.reference_point = moment_point;
     placement.motion_source = config;
-    meshmotion::DeformationOptions options;
-    for (std::size_t m = 0; m < roles.size() && m < mesh.markers().size(); ++m)
-        if (roles[m] == BoundaryKind::symmetry)
-            options.symmetry_markers.push_back(mesh.markers()[m]);
-    return std::make_unique<meshmotion::MeshMotion>(mesh, still_motion(surfaces), placement,
-                                                    surfaces, options);
+    // Rigid body: the wall markers are not used, the symmetry planes slide.
+    return std::make_unique<meshmotion::MeshMotion>(
+        mesh, still_motion(surfaces), placement, surfaces,
+        motion_deformation(mesh, roles, meshmotion::BodyMotion::rigid, 0.0, 0.0));
 }
 
 std::string surface_modes(const std::vector<meshmotion::ControlSurfaceSpec>& surfaces) {

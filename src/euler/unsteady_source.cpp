@@ -20,6 +20,7 @@
 #include "manta/core/frames.hpp"
 #include "manta/core/io.hpp"
 #include "manta/euler/case.hpp"
+#include "manta/euler/deflection.hpp"
 #include "manta/euler/gas.hpp"
 #include "manta/euler/source.hpp"
 #include "manta/euler/unsteady.hpp"

@@ -125,13 +125,6 @@ struct MotionStepping {
     const UnsteadySettings& inner, const std::vector<meshmotion::ControlSurfaceSpec>& surfaces,
     const std::string& dt_what = "manta cfd: --dt", const std::string& motion_what = {});
 
-/// The deformation options of a run along a motion (`manta cfd --motion` and the unsteady
-/// source alike): the body's motion `body` with its radii, the markers of role `wall` moving with
-/// the body (deforming mode), those of role `symmetry` sliding. `roles`: one per mesh marker.
-[[nodiscard]] meshmotion::DeformationOptions motion_deformation(
-    const mesh::Mesh& mesh, const std::vector<BoundaryKind>& roles, meshmotion::BodyMotion body,
-    double rigid_radius, double fixed_radius);
-
 /// The mesh's motion along `motion` about the reference values' moment point, with the control
 /// surfaces `surfaces` and the deformation `options` (the body's motion rigid or deforming),
 /// every sample of the motion checked (meshmotion::MeshMotion::check_motion). InputError (one

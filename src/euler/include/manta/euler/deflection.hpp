@@ -38,6 +38,14 @@ struct DeflectionNaming {
     std::string config = "the CFD configuration";  ///< where the control surfaces come from
 };
 
+/// The deformation options of a run along a motion (`manta cfd --motion` and the unsteady
+/// source alike; the steady deflections use its symmetry planes): the body's motion `body` with its
+/// radii, the markers of role `wall` moving with the body (deforming mode), those of role
+/// `symmetry` sliding. `roles`: one per mesh marker.
+[[nodiscard]] meshmotion::DeformationOptions motion_deformation(
+    const mesh::Mesh& mesh, const std::vector<BoundaryKind>& roles, meshmotion::BodyMotion body,
+    double rigid_radius, double fixed_radius);
+
 /// The steady deformation of `mesh` (finalized, undeflected) by the control surfaces
 /// `surfaces`: a MeshMotion along a motion of zeros with one mode column per mode of the
 /// surfaces (elevator, aileron and rudder always), about the reference point `moment_point`
