@@ -3,8 +3,12 @@
 
 #include "manta/euler/rotating_frame.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
+
+#include "manta/core/frames.hpp"
 
 namespace manta::euler {
 
@@ -98,6 +102,53 @@ void rotation_source(const NodeStates& U, const std::vector<double>& volumes,
         S.col(i).segment<3>(1) = -V * (w.cross(m) - U(0, i) * w_x_uinf);
         S(4, i) = -V * uinf_x_w.dot(m);
     }
+}
+
+bool rotates(const BodyRates& r) noexcept {
+    return r[0] != 0.0 || r[1] != 0.0 || r[2] != 0.0;
+}
+
+RotatingFrame body_rate_frame(const BodyRates& r, double mach, double span, double chord,
+                              const Vec3& center) {
+    // Body-axis rates from the non-dimensional ones (free-stream speed = Mach in the solver's
+    // units), turned into mesh axes.
+    const double V = mach;
+    const Vec3 body(r[0] * 2.0 * V / span, r[1] * 2.0 * V / chord, r[2] * 2.0 * V / span);
+    RotatingFrame frame;
+    frame.omega = core::geometry_from_body(body);
+    frame.center = center;
+    return frame;
+}
+
+std::optional<SymmetryCrossing> symmetry_crossing(const RotatingFrame& frame,
+                                                  const std::vector<BoundaryKind>& roles,
+                                                  const mesh::DualMetrics& dual) {
+    if (!frame.active()) return std::nullopt;
+    const Vec3 axis = frame.omega.normalized();
+    for (std::size_t mk = 0; mk < roles.size() && mk < dual.boundary.size(); ++mk) {
+        if (roles[mk] != BoundaryKind::symmetry) continue;
+        const auto& normals = dual.boundary[mk].normals;
+        for (Index k = 0; k < normals.cols(); ++k) {
+            const double a = normals.col(k).norm();
+            if (a > 0.0 && axis.cross(normals.col(k) / a).norm() > 1e-6)
+                return SymmetryCrossing{mk, dual.boundary[mk].nodes[static_cast<std::size_t>(k)],
+                                        normals.col(k) / a};
+        }
+    }
+    return std::nullopt;
+}
+
+std::string symmetry_crossing_message(const std::string& who,
+                                      const std::array<std::string, 3>& names, const BodyRates& r,
+                                      const std::string& mesh, const std::string& marker,
+                                      const Vec3& normal, long long node) {
+    return fmt::format(
+        "{}: {} {:g}, {} {:g}, {} {:g} turn the mesh {} through its symmetry plane '{}' (normal "
+        "({:.3g}, {:.3g}, {:.3g}) at node {}), which mirrors the flow; expected a rotation about "
+        "the plane's normal only (q_hat on a half model with the plane y = 0) or a mesh of the "
+        "whole aircraft",
+        who, names[0], r[0], names[1], r[1], names[2], r[2], mesh, marker, normal.x(), normal.y(),
+        normal.z(), node);
 }
 
 }  // namespace manta::euler

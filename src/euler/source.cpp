@@ -140,36 +140,16 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
     setup.flow.beta = q.beta;
     const Domain domain{&m, &dual, m.n_nodes(), &halo_};
     SteadySolver solver(domain, comm_, setup);
-    if (q.p_hat != 0.0 || q.q_hat != 0.0 || q.r_hat != 0.0) {
-        // Body-axis rates from the non-dimensional ones (free-stream speed = Mach in the
-        // solver's units), turned into mesh axes.
+    if (rotates(rates)) {
+        // The frame turning with the body (rotating_frame.hpp, shared with manta cfd --p-hat);
+        // a symmetry plane mirrors the flow, so the rotation must be about its normal.
         const ReferenceValues& ref = setup_.reference;
-        const double V = q.mach;
-        const Vec3 body(q.p_hat * 2.0 * V / ref.span, q.q_hat * 2.0 * V / ref.chord,
-                        q.r_hat * 2.0 * V / ref.span);
-        RotatingFrame frame;
-        frame.omega = core::geometry_from_body(body);
-        frame.center = ref.moment_point;
-        // A symmetry plane mirrors the flow: the motion is its own mirror image only when the
-        // rotation is about the plane's normal (pitch on a half model with the plane y = 0).
-        const Vec3 axis = frame.omega.normalized();
-        for (std::size_t mk = 0; mk < setup_.roles.size(); ++mk) {
-            if (setup_.roles[mk] != BoundaryKind::symmetry) continue;
-            const auto& normals = dual_.boundary[mk].normals;
-            for (Index k = 0; k < normals.cols(); ++k) {
-                const double a = normals.col(k).norm();
-                if (a > 0.0 && axis.cross(normals.col(k) / a).norm() > 1e-6)
-                    throw InputError(fmt::format(
-                        "euler source: p_hat {:g}, q_hat {:g}, r_hat {:g} turn the mesh {} "
-                        "through its symmetry plane '{}' (normal ({:.3g}, {:.3g}, {:.3g}) at node "
-                        "{}), which mirrors the flow; expected a rotation about the plane's "
-                        "normal only (q_hat on a half model with the plane y = 0) or a mesh of "
-                        "the whole aircraft",
-                        q.p_hat, q.q_hat, q.r_hat, label_, mesh_.markers()[mk], normals(0, k) / a,
-                        normals(1, k) / a, normals(2, k) / a,
-                        dual_.boundary[mk].nodes[static_cast<std::size_t>(k)]));
-            }
-        }
+        const RotatingFrame frame =
+            body_rate_frame(rates, q.mach, ref.span, ref.chord, ref.moment_point);
+        if (const auto c = symmetry_crossing(frame, setup_.roles, dual_))
+            throw InputError(symmetry_crossing_message("euler source", {"p_hat", "q_hat", "r_hat"},
+                                                       rates, label_, mesh_.markers()[c->marker],
+                                                       c->normal, static_cast<long long>(c->node)));
         solver.set_rotating_frame(frame);
     }
 

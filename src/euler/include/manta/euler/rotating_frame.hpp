@@ -33,10 +33,14 @@
 /// the current state each pseudo-time step (the step's hook takes a source and a scalar
 /// diagonal; B is not a scalar, so it is not in the implicit matrix).
 
+#include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "manta/euler/block_matrix.hpp"
 #include "manta/euler/gas.hpp"
+#include "manta/euler/spatial.hpp"
 #include "manta/mesh/dual.hpp"
 #include "manta/mesh/mesh.hpp"
 
@@ -70,5 +74,46 @@ void rotation_node_velocities(const mesh::Mesh& mesh, const RotatingFrame& frame
 /// `u_inf`: the free-stream velocity (solver units, mesh axes).
 void rotation_source(const NodeStates& U, const std::vector<double>& volumes,
                      const RotatingFrame& frame, const Vec3& u_inf, Index n_owned, NodeStates& S);
+
+/// Non-dimensional body rates p_hat = p b / (2 V), q_hat = q c / (2 V), r_hat = r b / (2 V), in
+/// this order (body axes x forward, y right, z down; b and c the reference span and chord).
+using BodyRates = std::array<double, 3>;
+
+/// Whether `r` turns the body (a component other than 0).
+[[nodiscard]] bool rotates(const BodyRates& r) noexcept;
+
+/// The frame turning with the body at the rates `r`, flying at the Mach number `mach` (the
+/// free-stream speed in the solver's units), with the reference span and chord [m] and about
+/// `center` (the moment point, mesh axes): omega = (p, q, r) in body axes with p = 2 V p_hat / b,
+/// q = 2 V q_hat / c, r = 2 V r_hat / b, turned into mesh axes by core::geometry_from_body. One
+/// copy for `EulerSource::evaluate` and `manta cfd --p-hat --q-hat --r-hat` (the case driver).
+[[nodiscard]] RotatingFrame body_rate_frame(const BodyRates& r, double mach, double span,
+                                            double chord, const Vec3& center);
+
+/// A boundary node of a symmetry plane whose normal is not the rotation axis.
+struct SymmetryCrossing {
+    std::size_t marker = 0;      ///< the marker (index into the roles)
+    Index node = 0;              ///< the node (the mesh's own index)
+    Vec3 normal = Vec3::Zero();  ///< its unit normal
+};
+
+/// A symmetry plane mirrors the flow: a frame turns a mesh with one consistently only about the
+/// plane's normal (pitch on a half model with the plane y = 0). The first node (in marker order,
+/// then in the dual's order) of a marker of role symmetry in `roles` (one per marker of the mesh
+/// of `dual`) whose normal is more than 1e-6 off the axis of `frame`, or none (also when the
+/// frame does not turn).
+[[nodiscard]] std::optional<SymmetryCrossing> symmetry_crossing(
+    const RotatingFrame& frame, const std::vector<BoundaryKind>& roles,
+    const mesh::DualMetrics& dual);
+
+/// The one-line error of a `symmetry_crossing`: "WHO: N0 v0, N1 v1, N2 v2 turn the mesh MESH
+/// through its symmetry plane 'MARKER' (normal (...) at node NODE), which mirrors the flow;
+/// expected ...". `names`: how the rates are named (p_hat, or --p-hat); `node` as the user
+/// numbers it.
+[[nodiscard]] std::string symmetry_crossing_message(const std::string& who,
+                                                    const std::array<std::string, 3>& names,
+                                                    const BodyRates& r, const std::string& mesh,
+                                                    const std::string& marker, const Vec3& normal,
+                                                    long long node);
 
 }  // namespace manta::euler
