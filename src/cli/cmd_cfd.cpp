@@ -25,6 +25,7 @@ struct CfdArgs {
     std::string mesh, config, out, initial;
     std::optional<double> mach, alpha_deg, beta_deg;
     std::optional<double> elevator_deg, aileron_deg, rudder_deg;
+    std::optional<double> p_hat, q_hat, r_hat;
     std::optional<int> max_iterations;
     std::optional<int> order;
     std::string motion;
@@ -50,6 +51,9 @@ int run_cfd(const CfdArgs& a) {
     if (a.elevator_deg) in.elevator = *a.elevator_deg * deg;
     if (a.aileron_deg) in.aileron = *a.aileron_deg * deg;
     if (a.rudder_deg) in.rudder = *a.rudder_deg * deg;
+    in.p_hat = a.p_hat;
+    in.q_hat = a.q_hat;
+    in.r_hat = a.r_hat;
     in.max_iterations = a.max_iterations;
     in.order = a.order;
     in.restart = a.restart;
@@ -112,6 +116,10 @@ int run_cfd(const CfdArgs& a) {
         const char* modes[] = {"elevator", "aileron", "rudder"};
         for (std::size_t k = 0; k < d.size(); ++k)
             if (d[k] != 0.0) deflected += fmt::format(", {} {:g} deg", modes[k], d[k] / deg);
+        const auto& w = cfd.rates();
+        const char* rate_names[] = {"p_hat", "q_hat", "r_hat"};
+        for (std::size_t k = 0; k < w.size(); ++k)
+            if (w[k] != 0.0) deflected += fmt::format(", {} {:g}", rate_names[k], w[k]);
         fmt::print("{} ({} nodes, {} process{}): M {:g}, alpha {:g} deg, beta {:g} deg{}\n", a.mesh,
                    cfd.n_nodes(), comm.size(), comm.size() == 1 ? "" : "es", f.mach, f.alpha / deg,
                    f.beta / deg, deflected);
@@ -141,7 +149,8 @@ void add_cfd(CLI::App& app, Action& action) {
         "motion (moving mesh, control surfaces from the configuration): coefficients.csv,\n"
         "summary.json, .pvd time series, restart_unsteady.bin. --elevator-deg, --aileron-deg,\n"
         "--rudder-deg deflect the control surfaces of the configuration or the mesh companion\n"
-        "(steady runs; the mesh deforms before the solve).");
+        "(steady runs; the mesh deforms before the solve); --p-hat, --q-hat, --r-hat solve in\n"
+        "the frame turning with the body at those rates.");
     auto a = std::make_shared<CfdArgs>();
     cmd->add_option("--mesh", a->mesh, "Mesh file (.su2, .su2.gz, .msh, .cgns; docs/mesh.md)")
         ->required()
@@ -168,6 +177,18 @@ void add_cfd(CLI::App& app, Action& action) {
                     "Rudder deflection [deg] (default 0; steady runs): the control surfaces of "
                     "mode rudder turn by gain times it about their hinges")
         ->check(real_in(-max_deflection_deg, max_deflection_deg, "deg"));
+    // Body rates: the steady flow in the frame turning with the body (docs/euler.md, "Rotation
+    // rates"); beyond 1 the wing tip turns faster than the body flies.
+    cmd->add_option("--p-hat", a->p_hat,
+                    "Non-dimensional roll rate p b/(2V) (default 0, or flow.p_hat; steady runs): "
+                    "the steady solution in the frame turning with the body about the moment point")
+        ->check(real_in(-1.0, 1.0));
+    cmd->add_option("--q-hat", a->q_hat,
+                    "Non-dimensional pitch rate q c/(2V) (default 0, or flow.q_hat; steady runs)")
+        ->check(real_in(-1.0, 1.0));
+    cmd->add_option("--r-hat", a->r_hat,
+                    "Non-dimensional yaw rate r b/(2V) (default 0, or flow.r_hat; steady runs)")
+        ->check(real_in(-1.0, 1.0));
     cmd->add_option("--config", a->config,
                     "Configuration YAML: marker roles, reference values, numerics "
                     "(docs/formats.md#cfd-configuration); the mesh's companion file X.mesh.yaml "

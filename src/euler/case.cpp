@@ -37,6 +37,8 @@ namespace manta::euler {
 namespace {
 
 constexpr double deg = 3.14159265358979323846 / 180.0;
+/// How the messages name the body rates (`CaseInputs::p_hat` ...).
+constexpr std::array<const char*, 3> rate_options{"--p-hat", "--q-hat", "--r-hat"};
 using clock = std::chrono::steady_clock;
 
 /// Peak resident memory of this process [bytes] (Linux /proc; 0 elsewhere).
@@ -75,28 +77,58 @@ std::string deflection_fingerprint(const ModeDeflections& d) {
 }
 constexpr std::string_view deflection_key = " deflections_rad=";
 
-/// The mesh's part of a restart fingerprint (without `deflection_fingerprint`).
+/// The restart fingerprint's part for the body rates `r` (none when all are 0, as the
+/// deflections'; after them).
+std::string rate_fingerprint(const BodyRates& r) {
+    if (!rotates(r)) return {};
+    return fmt::format(" rates_hat={},{},{}", core::format_exact(r[0]), core::format_exact(r[1]),
+                       core::format_exact(r[2]));
+}
+constexpr std::string_view rate_key = " rates_hat=";
+
+/// The mesh's part of a restart fingerprint (without `deflection_fingerprint` and
+/// `rate_fingerprint`): a warm start (--initial) may come from another deflection or rate.
 std::string mesh_part(const std::string& fingerprint) {
-    return fingerprint.substr(0, fingerprint.find(deflection_key));
+    return fingerprint.substr(
+        0, std::min(fingerprint.find(deflection_key), fingerprint.find(rate_key)));
 }
 
-/// The deflections a restart fingerprint names, for messages ("elevator 5 deg, aileron 0 deg,
-/// rudder 0 deg", or "no deflection").
-std::string deflection_words(const std::string& fingerprint) {
-    const std::size_t at = fingerprint.find(deflection_key);
-    if (at == std::string::npos) return "no deflection";
-    std::string rest = fingerprint.substr(at + deflection_key.size());
-    std::string text;
-    for (std::size_t k = 0; k < deflection_modes.size(); ++k) {
-        const std::size_t comma = rest.find(',');
-        double v = std::numeric_limits<double>::quiet_NaN();
+/// The three comma-separated values after `key` in a restart fingerprint (NaN where unreadable),
+/// or none without the key.
+std::optional<std::array<double, 3>> fingerprint_values(const std::string& fingerprint,
+                                                        std::string_view key) {
+    const std::size_t at = fingerprint.find(key);
+    if (at == std::string::npos) return std::nullopt;
+    std::string rest = fingerprint.substr(at + key.size());
+    std::array<double, 3> v{};
+    for (double& x : v) {
+        const std::size_t end = rest.find_first_of(", ");
+        x = std::numeric_limits<double>::quiet_NaN();
         try {
-            v = std::stod(rest.substr(0, comma));
+            x = std::stod(rest.substr(0, end));
         } catch (const std::exception&) {
         }
-        text += fmt::format("{}{} {:.6g} deg", k ? ", " : "", deflection_modes[k], v / deg);
-        rest = comma == std::string::npos ? std::string() : rest.substr(comma + 1);
+        rest = end == std::string::npos || rest[end] == ' ' ? std::string() : rest.substr(end + 1);
     }
+    return v;
+}
+
+/// The deflections and rates a restart fingerprint names, for messages ("elevator 5 deg, aileron
+/// 0 deg, rudder 0 deg, no rotation", "no deflection, p_hat 0, q_hat 0.02, r_hat 0").
+std::string condition_words(const std::string& fingerprint) {
+    std::string text;
+    if (const auto d = fingerprint_values(fingerprint, deflection_key)) {
+        for (std::size_t k = 0; k < deflection_modes.size(); ++k)
+            text +=
+                fmt::format("{}{} {:.6g} deg", k ? ", " : "", deflection_modes[k], (*d)[k] / deg);
+    } else {
+        text = "no deflection";
+    }
+    if (const auto r = fingerprint_values(fingerprint, rate_key))
+        text +=
+            fmt::format(", p_hat {:.6g}, q_hat {:.6g}, r_hat {:.6g}", (*r)[0], (*r)[1], (*r)[2]);
+    else
+        text += ", no rotation";
     return text;
 }
 
@@ -268,6 +300,9 @@ struct CfdCase::Impl {
     DeflectionNaming deflection_naming;
     std::string mesh_fingerprint_text;
     double deflection_s = 0;
+    // Steady body rates (p_hat, q_hat, r_hat) and the frame turning with the body at them.
+    BodyRates rates{0.0, 0.0, 0.0};
+    RotatingFrame frame;
     int resumed_from = -1;
     std::vector<std::string> history;  ///< rank 0: history.csv's rows so far
 
@@ -314,6 +349,9 @@ struct CfdCase::Impl {
     /// Deform the mesh by `deflection` (collective): rank 0 deforms the whole mesh and checks
     /// it, every process takes its nodes' coordinates and updates its dual metrics.
     void deflect();
+    /// The frame of `rates` (collective): InputError on every process when it turns the mesh
+    /// through a symmetry plane.
+    void place_rotating_frame();
     void resume_or_warm_start();
     void write_restart();
     void prepare_motion();
@@ -561,6 +599,22 @@ void CfdCase::Impl::prepare() {
     }
     // A deflection of a mode no surface has, or one not finite: refused before the mesh is read.
     (void)surface_deflections(cfg.control_surfaces, deflection, deflection_naming);
+    // Body rates: the command line over the configuration's flow.p_hat, q_hat, r_hat.
+    const std::array<std::optional<double>, 3> given_rates{in.p_hat ? in.p_hat : cfg.p_hat,
+                                                           in.q_hat ? in.q_hat : cfg.q_hat,
+                                                           in.r_hat ? in.r_hat : cfg.r_hat};
+    for (std::size_t k = 0; k < rates.size(); ++k) {
+        if (!given_rates[k]) continue;
+        if (!std::isfinite(*given_rates[k]))
+            throw InputError(fmt::format("manta cfd: {} {}: expected a finite rate",
+                                         rate_options[k], *given_rates[k]));
+        rates[k] = *given_rates[k];
+    }
+    if (unsteady && rotates(rates))
+        throw InputError(fmt::format(
+            "manta cfd: --p-hat {:g}, --q-hat {:g}, --r-hat {:g} (or flow.p_hat, q_hat, r_hat) "
+            "are not taken with --motion; the body's rates come from the motion {} there",
+            rates[0], rates[1], rates[2], in.motion.string()));
 
     // Rank 0 writes the run folder: it checks and locks it before the mesh is read (a second
     // `manta cfd` on the same folder stops here with exit 2; every process stops with it).
@@ -607,6 +661,12 @@ void CfdCase::Impl::prepare() {
         deflect();
         fingerprint += deflection_fingerprint(deflection);
     }
+    if (!unsteady && rotates(rates)) {
+        // The frame turning with the body (rotating_frame.hpp, as EulerSource::evaluate); the
+        // fingerprint takes the rates as it takes the deflections.
+        place_rotating_frame();
+        fingerprint += rate_fingerprint(rates);
+    }
     if (unsteady) {
         // The deformation's set-up needs the whole mesh: rank 0 moves the global mesh and every
         // process takes its nodes' coordinates (`coordinates`).
@@ -632,8 +692,43 @@ void CfdCase::Impl::prepare() {
         return;
     }
     solver = std::make_unique<SteadySolver>(domain, comm, setup);
+    if (frame.active()) solver->set_rotating_frame(frame);
     restart_file = in.out / "restart.bin";
     resume_or_warm_start();
+}
+
+void CfdCase::Impl::place_rotating_frame() {
+    const ReferenceValues& ref = setup.reference;
+    frame = body_rate_frame(rates, setup.flow.mach, ref.span, ref.chord, ref.moment_point);
+    // A symmetry plane mirrors the flow: every process checks the plane nodes of its part, and
+    // rank 0 names the first crossing of the lowest rank with one (the node in the file's
+    // numbering); every process throws that error.
+    constexpr std::size_t w = 6;  // found, marker, global node, normal
+    std::vector<double> found(w * static_cast<std::size_t>(comm.size()), 0.0);
+    if (const auto c = symmetry_crossing(frame, setup.roles, dual)) {
+        double* f = found.data() + w * static_cast<std::size_t>(comm.rank());
+        f[0] = 1.0;
+        f[1] = static_cast<double>(c->marker);
+        f[2] = static_cast<double>(local.global_node[static_cast<std::size_t>(c->node)]);
+        for (int k = 0; k < 3; ++k) f[3 + k] = c->normal[k];
+    }
+    if (comm.size() > 1) comm.sum(std::span<double>(found));
+    std::exception_ptr err;
+    if (root) {
+        for (std::size_t at = 0; at < found.size(); at += w) {
+            if (found[at] == 0.0) continue;
+            const auto marker = static_cast<std::size_t>(found[at + 1]);
+            const auto g = static_cast<std::size_t>(found[at + 2]);
+            const long long node = g < file_node.size() ? static_cast<long long>(file_node[g])
+                                                        : static_cast<long long>(g);
+            err = std::make_exception_ptr(InputError(symmetry_crossing_message(
+                "manta cfd", {"--p-hat", "--q-hat", "--r-hat"}, rates, in.mesh.string(),
+                local.mesh.markers()[marker], Vec3(found[at + 3], found[at + 4], found[at + 5]),
+                node)));
+            break;
+        }
+    }
+    parallel::rethrow_root_error(err, comm);
 }
 
 void CfdCase::Impl::deflect() {
@@ -682,11 +777,14 @@ void CfdCase::Impl::resume_or_warm_start() {
         const RestartData r = read_restart(restart_file, local.n_global_nodes);
         if (r.fingerprint != fingerprint && mesh_part(r.fingerprint) == mesh_fingerprint_text)
             throw InputError(fmt::format(
-                "{}: this restart file belongs to another control deflection ({}; this run: {}); "
-                "run with --restart to start over, or point --initial at it from a new --out "
-                "folder",
-                restart_file.string(), deflection_words(r.fingerprint),
-                deflection_words(fingerprint)));
+                "{}: this restart file belongs to another {} ({}; this run: {}); run with "
+                "--restart to start over, or point --initial at it from a new --out folder",
+                restart_file.string(),
+                fingerprint_values(r.fingerprint, deflection_key) ==
+                        fingerprint_values(fingerprint, deflection_key)
+                    ? "rotation rate"
+                    : "control deflection",
+                condition_words(r.fingerprint), condition_words(fingerprint)));
         if (r.fingerprint != fingerprint || r.mach != setup.flow.mach ||
             r.alpha != setup.flow.alpha || r.beta != setup.flow.beta)
             throw InputError(fmt::format(
@@ -717,7 +815,8 @@ void CfdCase::Impl::resume_or_warm_start() {
         }
     } else if (!in.initial.empty()) {
         const RestartData r = read_restart(in.initial, local.n_global_nodes);
-        // A solution of another control deflection on the same mesh may start this one.
+        // A solution of another control deflection or rotation rate on the same mesh may start
+        // this one.
         if (mesh_part(r.fingerprint) != mesh_fingerprint_text)
             throw InputError(
                 fmt::format("{}: the initial solution was computed on another mesh "
@@ -775,6 +874,9 @@ const CfdConfig& CfdCase::config() const noexcept {
 }
 const std::array<double, 3>& CfdCase::deflections() const noexcept {
     return impl_->deflection;
+}
+const BodyRates& CfdCase::rates() const noexcept {
+    return impl_->rates;
 }
 int CfdCase::resumed_from() const noexcept {
     return impl_->resumed_from;
@@ -1078,6 +1180,7 @@ CaseResult CfdCase::run(const Progress& progress) {
     j["deflections_deg"] = {{"elevator", c.deflection[0] / deg},
                             {"aileron", c.deflection[1] / deg},
                             {"rudder", c.deflection[2] / deg}};
+    j["rates"] = {{"p_hat", c.rates[0]}, {"q_hat", c.rates[1]}, {"r_hat", c.rates[2]}};
     if (deflects(c.deflection)) {
         // Each control surface's own deflection (gain times its mode's).
         const std::vector<double> delta =

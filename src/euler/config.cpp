@@ -39,6 +39,11 @@ CfdConfig read(const ConfigNode& root) {
             c.alpha = f.angle("alpha", NumberSpec::range(-90 * deg, 90 * deg, "rad"));
         if (f.has_angle("beta"))
             c.beta = f.angle("beta", NumberSpec::range(-90 * deg, 90 * deg, "rad"));
+        // Body rates (docs/euler.md, "Rotation rates"): p_hat = 1 turns the wing tip at the flight
+        // speed, far beyond a quasi-steady table.
+        if (f.has("p_hat")) c.p_hat = f.number("p_hat", NumberSpec::range(-1.0, 1.0, "-"));
+        if (f.has("q_hat")) c.q_hat = f.number("q_hat", NumberSpec::range(-1.0, 1.0, "-"));
+        if (f.has("r_hat")) c.r_hat = f.number("r_hat", NumberSpec::range(-1.0, 1.0, "-"));
         c.gamma = f.number_or("gamma", 1.4, NumberSpec{1.0, 2.0, true, false, "-"});
         f.finish();
     }

@@ -53,6 +53,11 @@ struct CaseInputs {
     /// gain times its mode's deflection and the mesh deforms with it before the solve. Not
     /// taken with a motion (its mode columns deflect the surfaces there).
     std::optional<double> elevator, aileron, rudder;
+    /// Steady runs: non-dimensional body rates p_hat = p b / (2 V), q_hat = q c / (2 V),
+    /// r_hat = r b / (2 V) (body axes, about the reference moment point; override flow.p_hat,
+    /// q_hat, r_hat): the steady solution in the frame turning with the body (rotating_frame.hpp,
+    /// as `EulerSource::evaluate`). Not taken with a motion.
+    std::optional<double> p_hat, q_hat, r_hat;
     /// Motion file (docs/formats.md#motion-file): a time-accurate run along it.
     std::filesystem::path motion;
     std::optional<double> dt;      ///< physical time step [s]; default the motion's spacing
@@ -160,7 +165,11 @@ public:
     /// mesh by the configuration's control surfaces (deflection.hpp; InputError naming the
     /// option and value for a mode no surface has, a value that is not finite, a fold) and
     /// every process takes its nodes' deformed coordinates; the restart file of another
-    /// deflection is refused (InputError). Every process throws rank 0's error.
+    /// deflection is refused (InputError). With body rates (`CaseInputs::p_hat`, ... or the
+    /// configuration's flow.p_hat, ...) the solver turns with the body (rotating_frame.hpp:
+    /// `body_rate_frame`, InputError naming the plane and node for a rotation through a symmetry
+    /// plane, as EulerSource); the rates are part of the restart fingerprint (a restart file of
+    /// other rates is refused, a warm start from one taken). Every process throws rank 0's error.
     CfdCase(CaseInputs inputs, const parallel::Communicator& comm);
     ~CfdCase();
     CfdCase(const CfdCase&) = delete;
@@ -180,6 +189,8 @@ public:
     /// Steady runs: the control deflections the mesh was deformed by [rad] (elevator, aileron,
     /// rudder; zeros when none).
     [[nodiscard]] const std::array<double, 3>& deflections() const noexcept;
+    /// Steady runs: the body rates p_hat, q_hat, r_hat of the rotating frame (zeros when none).
+    [[nodiscard]] const BodyRates& rates() const noexcept;
     /// Nodes of the whole mesh.
     [[nodiscard]] std::int64_t n_nodes() const noexcept;
     /// The steady solver (partition-local); a time-accurate case has none (InputError).

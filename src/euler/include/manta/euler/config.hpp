@@ -32,6 +32,8 @@ struct CfdConfig {
     std::optional<double> mach;
     std::optional<double> alpha;  ///< [rad]
     std::optional<double> beta;   ///< [rad]
+    /// Non-dimensional body rates p_hat, q_hat, r_hat (`flow.p_hat` ...; rotating_frame.hpp).
+    std::optional<double> p_hat, q_hat, r_hat;
     double gamma = 1.4;
     std::map<std::string, BoundaryKind> markers;  ///< roles given by name
     ReferenceValues reference;
