@@ -305,19 +305,9 @@ Campaign parse_campaign(std::string_view text, const std::string& source,
         c.static_table.kriging.seed = c.static_table.seed;
     }
     // Every source fills every section: the Euler source deforms its mesh by the CFD
-    // configuration's control surfaces and solves rotation rates in the rotating frame. The
-    // launched Euler source (source.launcher: each sample a `manta cfd` job) runs static samples
-    // only.
-    for (const char* section : {"controls", "dynamic"})
-        if (root.has(section) && c.source.type == SourceType::euler && c.source.launched)
-            root.fail(section,
-                      fmt::format("needs {}, which the euler source with a launcher does not run "
-                                  "(each sample a steady manta cfd job)",
-                                  std::string(section) == "controls" ? "control-surface deflections"
-                                                                     : "rotation rates"),
-                      fmt::format("no '{}' section with source.launcher (without a launcher the "
-                                  "euler source fills it in process)",
-                                  section));
+    // configuration's control surfaces and solves rotation rates in the rotating frame, in
+    // process or, with source.launcher, each sample a `manta cfd` job with the deflections and
+    // rates on its command line.
     if (root.has("controls")) {
         ConfigMap ctl = root.map("controls");
         for (const aero::Axis a : {aero::Axis::elevator, aero::Axis::aileron, aero::Axis::rudder}) {
