@@ -94,7 +94,7 @@ nlohmann::json number_or_null(double v) {
 
 std::vector<double> in_degrees(const std::vector<double>& v) {
     std::vector<double> out;
-    for (const double x : v) out.push_back(x / deg);
+    for (const double x : v) out.push_back(std::round(x / deg * 1e9) / 1e9);  // 15, not 14.99..
     return out;
 }
 
@@ -454,7 +454,7 @@ nlohmann::json Comparison::to_json() const {
     j["summary"] = nlohmann::json::array();
     for (const auto& s : machs) {
         nlohmann::json e{{"mach", s.mach},
-                         {"beta_deg", s.beta / deg},
+                         {"beta_deg", std::round(s.beta / deg * 1e9) / 1e9},
                          {"fit_alpha_deg", in_degrees(s.fit_alpha)}};
         for (std::size_t k = 0; k < summary_names.size(); ++k) {
             e["main"][summary_names[k]] = number_or_null(s.main[k]);
@@ -486,7 +486,8 @@ nlohmann::json Comparison::to_json() const {
         if (mode == SliceMode::exact)
             sl["exact"] = sl["exact"].get<int>() + 1;
         else
-            sl[to_string(mode)].push_back({{"mach", mb[0]}, {"beta_deg", mb[1] / deg}});
+            sl[to_string(mode)].push_back(
+                {{"mach", mb[0]}, {"beta_deg", std::round(mb[1] / deg * 1e9) / 1e9}});
     }
     j["slices"] = sl;
     return j;

@@ -65,7 +65,8 @@ bool has_breakpoint(const std::vector<double>& b, double v) {
     return std::any_of(b.begin(), b.end(), [&](double x) { return near(x, v); });
 }
 
-/// A table's curve of coefficient k: mean and band (display units) and the name and colour.
+/// A table's curve of coefficient k: mean and band (display units) and the name and colour. A
+/// second table's band (lighter, opacity < 0.2) goes under every line already in the panel.
 void add_curve(Panel& p, const std::vector<TableEntry>& rows, std::size_t k,
                const std::string& name, const std::string& colour, SeriesStyle line,
                double opacity) {
@@ -79,7 +80,11 @@ void add_curve(Panel& p, const std::vector<TableEntry>& rows, std::size_t k,
         mean.x.push_back(e.alpha * rad2deg);
         mean.y.push_back(e.c[k]);
     }
-    p.series.push_back(std::move(band));
+    auto at = p.series.end();
+    if (opacity < 0.2)
+        at = std::find_if(p.series.begin(), p.series.end(),
+                          [](const Series& s) { return s.style != SeriesStyle::band; });
+    p.series.insert(at, std::move(band));
     p.series.push_back(std::move(mean));
 }
 

@@ -2,7 +2,8 @@
 /// The report in a real browser: headless chromium opens the report of the fixture run
 /// directory, the test checks that every plot was drawn (the page counts the plot elements that
 /// its script marked data-rendered) with no script or console error, and saves a screenshot in
-/// the build tree (tests/report/browser/report.png).
+/// the build tree (tests/report/browser/report.png); the same for a page with --compare-tables
+/// (tests/report/browser/compare.png).
 
 #include <gtest/gtest.h>
 
