@@ -1,6 +1,7 @@
 /// @file cmd_report.cpp
-/// `manta report RUN_DIR --html FILE [--figures DIR] [--png] [--json]`: the self-contained
-/// HTML report of a run directory (docs/report.md).
+/// `manta report RUN_DIR --html FILE [--figures DIR] [--png] [--compare-tables DIR
+/// [--compare-label TEXT]] [--json]`: the self-contained HTML report of a run directory
+/// (docs/report.md).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -16,6 +17,28 @@
 
 namespace manta::cli {
 
+namespace {
+
+/// The comparison's summary in a few lines (the numbers of --json, 4 significant digits).
+void print_comparison(const nlohmann::json& c) {
+    auto v = [](const nlohmann::json& x) {
+        return x.is_number() ? fmt::format("{:.4g}", x.get<double>()) : std::string("-");
+    };
+    const std::string a = c["main"]["label"].get<std::string>();
+    const std::string b = c["compare"]["label"].get<std::string>();
+    fmt::print("  compared with {} ({}); {} / {} (ratio):\n", b,
+               c["compare"]["dir"].get<std::string>(), a, b);
+    for (const auto& e : c["summary"]) {
+        std::string line = fmt::format("    M {}:", v(e["mach"]));
+        for (const char* k : report::summary_names)
+            line += fmt::format(" {} {} / {} ({})", k, v(e["main"][k]), v(e["compare"][k]),
+                                v(e["ratio"][k]));
+        fmt::print("{}\n", line);
+    }
+}
+
+}  // namespace
+
 void add_report(CLI::App& app, Action& action) {
     auto* cmd = app.add_subcommand(
         "report",
@@ -27,6 +50,7 @@ void add_report(CLI::App& app, Action& action) {
     auto figures = std::make_shared<std::string>();
     auto png = std::make_shared<bool>(false);
     auto json = std::make_shared<bool>(false);
+    auto compare = std::make_shared<std::string>();
     cmd->add_option("RUN_DIR", *run_dir,
                     "Run directory (manta demo --out), or a tables, optimise "
                     "or replay output directory")
@@ -42,6 +66,15 @@ void add_report(CLI::App& app, Action& action) {
                   "seconds per figure; skipped with a note when chromium is absent)");
     cmd->add_option("--chromium", o->chromium,
                     "Browser executable for the PNGs (default: chromium on PATH)");
+    auto* compare_opt = cmd->add_option(
+        "--compare-tables", *compare,
+        "A second `manta tables --out` directory: its tables drawn beside RUN_DIR's "
+        "on the same axes, with a summary of slopes, zero-incidence coefficients and "
+        "control powers");
+    cmd->add_option("--compare-label", o->compare_label,
+                    "Name of the compared tables in the page (default: the source in its "
+                    "summary.json, e.g. vlm or euler)")
+        ->needs(compare_opt);
     cmd->add_flag("--json", *json, "Print one JSON object: parts shown, parts missing, files");
     cmd->callback([=, &action] {
         action = [=]() -> int {
@@ -55,6 +88,7 @@ void add_report(CLI::App& app, Action& action) {
                 opt.figures_dir = *figures;
             }
             opt.png = *png;
+            if (!compare->empty()) opt.compare_tables = *compare;
             const report::ReportResult r = report::make_report(opt);
             if (*json) {
                 print_json(r.to_json());
@@ -63,6 +97,7 @@ void add_report(CLI::App& app, Action& action) {
                            r.n_figures, r.html_bytes);
                 fmt::print("  shown: {}\n", fmt::join(r.parts, ", "));
                 if (!r.missing.empty()) fmt::print("  absent: {}\n", fmt::join(r.missing, ", "));
+                if (!r.comparison.is_null()) print_comparison(r.comparison);
                 if (opt.figures_dir)
                     fmt::print("  figures: {} files in {}\n", r.files.size() - 1,
                                opt.figures_dir->string());

@@ -34,6 +34,7 @@ table.num td.k,table.num th.k{text-align:left}
 .tools{font-size:12px;margin:2px 0}
 .tools button,.tools select{font-size:12px}
 .drawing svg{max-width:100%;height:auto}
+.wide{overflow-x:auto}
 .drawing svg text{font-family:Helvetica,Arial,sans-serif;font-size:12px;fill:#222}
 .path3d svg{cursor:grab;background:#fff;border:1px solid #ddd}
 )CSS";
@@ -152,10 +153,13 @@ const char* const report_js = R"JS(
       if (s.style === 'band') {
         var up = points(s.x, s.y_upper, X, Y);
         var lo = points(s.x.slice().reverse(), s.y.slice().reverse(), X, Y);
-        el('polygon', {points: up + ' ' + lo, fill: s.colour, 'fill-opacity': 0.2, stroke: 'none'}, g);
+        el('polygon', {points: up + ' ' + lo, fill: s.colour, 'fill-opacity': s.opacity || 0.2, stroke: 'none'}, g);
       } else if (s.style === 'markers') {
         for (var i = 0; i < s.x.length; i++)
           el('circle', {cx: X(s.x[i]), cy: Y(s.y[i]), r: 3, fill: 'none', stroke: s.colour, 'stroke-width': 1.2}, g);
+      } else if (s.style === 'squares') {
+        for (var j = 0; j < s.x.length; j++)
+          el('rect', {x: X(s.x[j]) - 3, y: Y(s.y[j]) - 3, width: 6, height: 6, fill: 'none', stroke: s.colour, 'stroke-width': 1.2}, g);
       } else {
         var a = {points: points(s.x, s.y, X, Y), fill: 'none', stroke: s.colour, 'stroke-width': 1.6};
         if (s.style === 'dashed') a['stroke-dasharray'] = '5,4';
@@ -213,8 +217,9 @@ const char* const report_js = R"JS(
     entries.forEach(function (s) {
       var w = 34 + 7 * s.name.length;
       if (lx + w > width && lx > 10) { lx = 10; ly += L.legend; }
-      if (s.style === 'band') el('rect', {x: lx, y: ly - 9, width: 22, height: 10, fill: s.colour, 'fill-opacity': 0.25}, svg);
+      if (s.style === 'band') el('rect', {x: lx, y: ly - 9, width: 22, height: 10, fill: s.colour, 'fill-opacity': Math.min(1, (s.opacity || 0.2) + 0.05)}, svg);
       else if (s.style === 'markers') el('circle', {cx: lx + 11, cy: ly - 4, r: 3, fill: 'none', stroke: s.colour, 'stroke-width': 1.2}, svg);
+      else if (s.style === 'squares') el('rect', {x: lx + 8, y: ly - 7, width: 6, height: 6, fill: 'none', stroke: s.colour, 'stroke-width': 1.2}, svg);
       else {
         var a = {x1: lx, y1: ly - 4, x2: lx + 22, y2: ly - 4, stroke: s.colour, 'stroke-width': 2};
         if (s.style === 'dashed') a['stroke-dasharray'] = '5,4';

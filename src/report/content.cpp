@@ -43,48 +43,130 @@ std::vector<double> distinct(std::vector<double> v) {
 
 const std::array<const char*, 6> coefficient_labels{"CL", "CD", "CY", "Cl", "Cm", "Cn"};
 
-/// Static slice at (mach, beta): the six coefficients against alpha, +-2 sigma, samples.
-Figure static_slice(const TablesData& t, double mach, double beta, const std::string& id) {
+/// The second table set of a comparison (--compare-tables).
+struct Second {
+    const TablesData& tables;
+    const TablesInterpolant& interp;
+};
+
+std::vector<TableEntry> rows_at(const std::vector<TableEntry>& entries, double mach,
+                                std::optional<double> beta, std::optional<double> delta) {
+    std::vector<TableEntry> rows;
+    for (const auto& e : entries)
+        if (near(e.mach, mach) && (!beta || near(e.beta, *beta)) &&
+            (!delta || near(e.delta, *delta)))
+            rows.push_back(e);
+    std::sort(rows.begin(), rows.end(),
+              [](const TableEntry& a, const TableEntry& b) { return a.alpha < b.alpha; });
+    return rows;
+}
+
+bool has_breakpoint(const std::vector<double>& b, double v) {
+    return std::any_of(b.begin(), b.end(), [&](double x) { return near(x, v); });
+}
+
+/// A table's curve of coefficient k: mean and band (display units) and the name and colour. A
+/// second table's band (lighter, opacity < 0.2) goes under every line already in the panel.
+void add_curve(Panel& p, const std::vector<TableEntry>& rows, std::size_t k,
+               const std::string& name, const std::string& colour, SeriesStyle line,
+               double opacity) {
+    Series band{name + " +-2 sigma", colour, SeriesStyle::band, {}, {}, {}};
+    band.opacity = opacity;
+    Series mean{name, colour, line, {}, {}, {}};
+    for (const auto& e : rows) {
+        band.x.push_back(e.alpha * rad2deg);
+        band.y.push_back(e.c[k] - 2 * e.sigma[k]);
+        band.y_upper.push_back(e.c[k] + 2 * e.sigma[k]);
+        mean.x.push_back(e.alpha * rad2deg);
+        mean.y.push_back(e.c[k]);
+    }
+    auto at = p.series.end();
+    if (opacity < 0.2)
+        at = std::find_if(p.series.begin(), p.series.end(),
+                          [](const Series& s) { return s.style != SeriesStyle::band; });
+    p.series.insert(at, std::move(band));
+    p.series.push_back(std::move(mean));
+}
+
+/// The second table's entries at a slice: its own where it has the slice's breakpoints, else
+/// interpolated through its database at the main table's alphas inside its alpha range; empty
+/// outside its range. `interpolated` says which.
+std::vector<TableEntry> second_rows(const Second& s, const std::string& table,
+                                    const std::vector<TableEntry>& main_rows, double mach,
+                                    double beta, double delta, bool& interpolated) {
+    interpolated = false;
+    const TableGrid* g = s.interp.grid(table);
+    if (!g || main_rows.empty()) return {};
+    const bool is_static = table == "static";
+    if (has_breakpoint(g->mach, mach) && has_breakpoint(g->beta, beta) &&
+        (is_static || has_breakpoint(g->delta, delta)))
+        return rows_at(s.tables.tables.at(table), mach, beta,
+                       is_static ? std::nullopt : std::optional<double>(delta));
+    std::vector<TableEntry> out;
+    for (const auto& m : main_rows) {
+        if (!s.interp.inside(table, m.alpha, mach, beta, delta)) continue;
+        TableEntry e;
+        e.alpha = m.alpha;
+        e.mach = mach;
+        e.beta = beta;
+        e.delta = delta;
+        e.c = s.interp.value(table, m.alpha, mach, beta, delta);
+        e.sigma = s.interp.sigma(table, m.alpha, mach, beta, delta);
+        out.push_back(e);
+    }
+    interpolated = !out.empty();
+    return out;
+}
+
+/// Static slice at (mach, beta): the six coefficients against alpha, +-2 sigma, samples; with a
+/// second table set, its curves on the same axes (its own colour, lighter band, squares).
+Figure static_slice(const TablesData& t, double mach, double beta, const std::string& id,
+                    const std::optional<Second>& second) {
     Figure f;
     f.id = id;
     f.title = fmt::format("Static table at M = {}, beta = {} deg", num(mach), num(beta * rad2deg));
-    std::vector<TableEntry> rows;
-    for (const auto& e : t.tables.at("static"))
-        if (near(e.mach, mach) && near(e.beta, beta)) rows.push_back(e);
-    std::sort(rows.begin(), rows.end(),
-              [](const TableEntry& a, const TableEntry& b) { return a.alpha < b.alpha; });
+    const std::vector<TableEntry> rows = rows_at(t.tables.at("static"), mach, beta, std::nullopt);
+    bool interpolated = false;
+    const std::vector<TableEntry> rows2 =
+        second ? second_rows(*second, "static", rows, mach, beta, 0.0, interpolated)
+               : std::vector<TableEntry>{};
+    const std::string name1 = second ? t.label : std::string("table (Kriging)");
+    const std::string samples1 = second ? t.label + " samples" : std::string("samples");
     for (std::size_t k = 0; k < 6; ++k) {
         Panel p;
         p.title = coefficient_labels[k];
         p.x_label = "alpha [deg]";
         p.y_label = std::string(coefficient_labels[k]) + " [-]";
-        Series band{"table +-2 sigma", colour_of("table"), SeriesStyle::band, {}, {}, {}};
-        Series mean{"table (Kriging)", colour_of("table"), SeriesStyle::line, {}, {}, {}};
-        for (const auto& e : rows) {
-            band.x.push_back(e.alpha * rad2deg);
-            band.y.push_back(e.c[k] - 2 * e.sigma[k]);
-            band.y_upper.push_back(e.c[k] + 2 * e.sigma[k]);
-            mean.x.push_back(e.alpha * rad2deg);
-            mean.y.push_back(e.c[k]);
-        }
-        Series samples{"samples", colour_of("samples"), SeriesStyle::markers, {}, {}, {}};
-        for (const auto& s : t.samples)
-            if (s.scenario == "static" && !s.has_rates && near(s.mach, mach) &&
-                near(s.beta, beta)) {
-                samples.x.push_back(s.alpha * rad2deg);
-                samples.y.push_back(s.c[k]);
-            }
-        p.series.push_back(std::move(band));
-        p.series.push_back(std::move(mean));
-        if (!samples.x.empty()) p.series.push_back(std::move(samples));
+        add_curve(p, rows, k, name1, colour_of("table"), SeriesStyle::line, 0.2);
+        if (!second) p.series.front().name = "table +-2 sigma";
+        auto samples_of = [&](const TablesData& d, const std::string& name,
+                              const std::string& colour, SeriesStyle style) {
+            Series s{name, colour, style, {}, {}, {}};
+            for (const auto& x : d.samples)
+                if (x.scenario == "static" && !x.has_rates && near(x.mach, mach) &&
+                    near(x.beta, beta)) {
+                    s.x.push_back(x.alpha * rad2deg);
+                    s.y.push_back(x.c[k]);
+                }
+            if (!s.x.empty()) p.series.push_back(std::move(s));
+        };
+        if (!rows2.empty())
+            add_curve(p, rows2, k, second->tables.label + (interpolated ? " (interpolated)" : ""),
+                      colour_of("compare"), SeriesStyle::line, 0.1);
+        samples_of(t, samples1, colour_of("samples"), SeriesStyle::markers);
+        if (!rows2.empty() && !interpolated)
+            samples_of(second->tables, second->tables.label + " samples", colour_of("compare"),
+                       SeriesStyle::squares);
         f.panels.push_back(std::move(p));
     }
     return f;
 }
 
-/// Control increments at one Mach: the extreme deflections with +-2 sigma (the paper's Fig. 8).
-Figure control_slice(const std::string& control, const std::vector<TableEntry>& entries,
-                     double mach, const std::string& id) {
+/// Control increments at one Mach: the extreme deflections with +-2 sigma (the paper's Fig. 8);
+/// with a second table set, its increments at the same deflections (dashed, its own colours).
+Figure control_slice(const std::string& control, const TablesData& t, double mach,
+                     const std::string& id, const std::optional<Second>& second) {
+    const std::vector<TableEntry>& entries = t.tables.at(control);
     Figure f;
     f.id = id;
     f.title = fmt::format("{} increments at M = {}, beta = 0", control, num(mach));
@@ -100,33 +182,32 @@ Figure control_slice(const std::string& control, const std::vector<TableEntry>& 
         p.x_label = "alpha [deg]";
         p.y_label = fmt::format("d{} [-]", coefficient_labels[k]);
         for (const auto& [delta, key] : shown) {
-            std::vector<TableEntry> rows;
-            for (const auto& e : entries)
-                if (near(e.mach, mach) && near(e.delta, delta)) rows.push_back(e);
-            std::sort(rows.begin(), rows.end(),
-                      [](const TableEntry& a, const TableEntry& b) { return a.alpha < b.alpha; });
+            const std::vector<TableEntry> rows = rows_at(entries, mach, std::nullopt, delta);
             const std::string name = fmt::format("{} {} deg", control, num(delta * rad2deg));
-            Series band{name + " +-2 sigma", colour_of(key), SeriesStyle::band, {}, {}, {}};
-            Series line{name, colour_of(key), SeriesStyle::line, {}, {}, {}};
-            for (const auto& e : rows) {
-                band.x.push_back(e.alpha * rad2deg);
-                band.y.push_back(e.c[k] - 2 * e.sigma[k]);
-                band.y_upper.push_back(e.c[k] + 2 * e.sigma[k]);
-                line.x.push_back(e.alpha * rad2deg);
-                line.y.push_back(e.c[k]);
-            }
-            p.series.push_back(std::move(band));
-            p.series.push_back(std::move(line));
+            add_curve(p, rows, k, second ? t.label + " " + name : name, colour_of(key),
+                      SeriesStyle::line, 0.2);
+            if (!second || rows.empty()) continue;
+            bool interpolated = false;
+            const auto rows2 =
+                second_rows(*second, control, rows, mach, rows.front().beta, delta, interpolated);
+            if (!rows2.empty())
+                add_curve(
+                    p, rows2, k,
+                    second->tables.label + " " + name + (interpolated ? " (interpolated)" : ""),
+                    colour_of(key == "delta_min" ? "compare_min" : "compare_max"),
+                    SeriesStyle::dashed, 0.1);
         }
         f.panels.push_back(std::move(p));
     }
     return f;
 }
 
+/// The dynamic derivatives the report draws.
+const std::array<const char*, 9> dynamic_names{"CL_q", "Cm_q", "CY_p", "Cl_p", "Cn_p",
+                                               "CY_r", "Cl_r", "Cn_r", "CD_q"};
+
 /// Dynamic derivatives against alpha, one curve per Mach.
 std::optional<Figure> dynamic_figure(const Columns& d) {
-    static const std::array<const char*, 9> names{"CL_q", "Cm_q", "CY_p", "Cl_p", "Cn_p",
-                                                  "CY_r", "Cl_r", "Cn_r", "CD_q"};
     static const std::array<const char*, 6> ramp{"#440154", "#3b528b", "#21918c",
                                                  "#3aa35b", "#8fb21c", "#c7a200"};
     const auto& alpha = d.at("alpha_deg");
@@ -135,7 +216,7 @@ std::optional<Figure> dynamic_figure(const Columns& d) {
     Figure f;
     f.id = "tables-dynamic";
     f.title = "Dynamic derivatives (per non-dimensional rate)";
-    for (const char* n : names) {
+    for (const char* n : dynamic_names) {
         if (!d.has(n)) continue;
         Panel p;
         p.title = n;
@@ -161,6 +242,104 @@ std::optional<Figure> dynamic_figure(const Columns& d) {
         f.panels.push_back(std::move(p));
     }
     if (f.panels.empty()) return std::nullopt;
+    return f;
+}
+
+/// (alpha [deg], value) of a dynamic.csv column at one Mach number, sorted by alpha.
+std::vector<std::pair<double, double>> dynamic_points(const Columns& d, const std::string& column,
+                                                      double mach) {
+    std::vector<std::pair<double, double>> pts;
+    const auto& alpha = d.at("alpha_deg");
+    const auto& m = d.at("mach");
+    for (std::size_t i = 0; i < alpha.size(); ++i)
+        if (near(m[i], mach)) pts.emplace_back(alpha[i], d.at(column)[i]);
+    std::sort(pts.begin(), pts.end());
+    return pts;
+}
+
+/// The dynamic derivatives of both table sets at one Mach number of the main table: the second's
+/// own rows where it has that Mach number, else interpolated at the main table's alphas.
+Figure dynamic_compare_figure(const TablesData& t, const Second& second,
+                              const std::vector<std::string>& columns, double mach,
+                              const std::string& id) {
+    Figure f;
+    f.id = id;
+    f.title = fmt::format("Dynamic derivatives at M = {} (per non-dimensional rate)", num(mach));
+    const TableGrid* g2 = second.interp.dynamic_grid();
+    const bool exact = g2 && has_breakpoint(g2->mach, mach);
+    for (const char* n : dynamic_names) {
+        if (std::find(columns.begin(), columns.end(), n) == columns.end()) continue;
+        Panel p;
+        p.title = n;
+        p.x_label = "alpha [deg]";
+        p.y_label = std::string(n) + " [-]";
+        Series s1{t.label, colour_of("table"), SeriesStyle::line, {}, {}, {}};
+        for (const auto& [a, v] : dynamic_points(*t.dynamic, n, mach)) {
+            s1.x.push_back(a);
+            s1.y.push_back(v);
+        }
+        Series s2{second.tables.label + (exact ? "" : " (interpolated)"),
+                  colour_of("compare"),
+                  SeriesStyle::line,
+                  {},
+                  {},
+                  {}};
+        if (exact) {
+            for (const auto& [a, v] : dynamic_points(*second.tables.dynamic, n, mach)) {
+                s2.x.push_back(a);
+                s2.y.push_back(v);
+            }
+        } else if (g2 && mach >= g2->mach.front() - 1e-9 && mach <= g2->mach.back() + 1e-9) {
+            for (const double a : s1.x)
+                if (a / rad2deg >= g2->alpha.front() - 1e-9 &&
+                    a / rad2deg <= g2->alpha.back() + 1e-9)
+                    if (const auto v = second.interp.dynamic(n, a / rad2deg, mach)) {
+                        s2.x.push_back(a);
+                        s2.y.push_back(*v);
+                    }
+        }
+        p.series.push_back(std::move(s1));
+        if (!s2.x.empty()) p.series.push_back(std::move(s2));
+        f.panels.push_back(std::move(p));
+    }
+    return f;
+}
+
+/// The comparison's summary against Mach: lift and pitching-moment slopes, CL, Cm and CD at
+/// alpha = 0, both tables (points where a table reaches them).
+Figure summary_figure(const Comparison& c) {
+    static const std::array<const char*, 5> labels{"CL_alpha [1/rad]", "Cm_alpha [1/rad]",
+                                                   "CL at alpha 0 [-]", "Cm at alpha 0 [-]",
+                                                   "CD at alpha 0 [-]"};
+    Figure f;
+    f.id = "tables-compare-summary";
+    f.title = fmt::format("{} and {}: slopes and zero-incidence coefficients", c.main_label,
+                          c.other_label);
+    for (std::size_t k = 0; k < summary_names.size(); ++k) {
+        Panel p;
+        p.title = summary_names[k];
+        p.x_label = "Mach [-]";
+        p.y_label = labels[k];
+        Series a{c.main_label, colour_of("table"), SeriesStyle::line, {}, {}, {}};
+        Series b{c.other_label, colour_of("compare"), SeriesStyle::line, {}, {}, {}};
+        for (const auto& s : c.machs) {
+            if (std::isfinite(s.main[k])) {
+                a.x.push_back(s.mach);
+                a.y.push_back(s.main[k]);
+            }
+            if (std::isfinite(s.other[k])) {
+                b.x.push_back(s.mach);
+                b.y.push_back(s.other[k]);
+            }
+        }
+        Series am{c.main_label, colour_of("table"), SeriesStyle::markers, a.x, a.y, {}, false};
+        Series bm{c.other_label, colour_of("compare"), SeriesStyle::squares, b.x, b.y, {}, false};
+        p.series.push_back(std::move(a));
+        p.series.push_back(std::move(b));
+        p.series.push_back(std::move(am));
+        p.series.push_back(std::move(bm));
+        f.panels.push_back(std::move(p));
+    }
     return f;
 }
 
@@ -392,6 +571,15 @@ ReportContent build_content(const RunData& run) {
         if (exported) out.exported.push_back(f.id);
         out.figures.push_back(std::move(f));
     };
+    // A second table set (--compare-tables): both as aero databases, and the summary numbers.
+    std::optional<TablesInterpolant> main_interp, other_interp;
+    std::optional<Second> second;
+    if (run.tables && run.compare && run.tables->tables.count("static")) {
+        main_interp.emplace(*run.tables);
+        other_interp.emplace(*run.compare);
+        second.emplace(Second{*run.compare, *other_interp});
+        out.comparison = compare_tables(*run.tables, *main_interp, *run.compare, *other_interp);
+    }
     if (run.tables && run.tables->tables.count("static")) {
         const TablesData& t = *run.tables;
         std::vector<double> machs, betas;
@@ -415,7 +603,11 @@ ReportContent build_content(const RunData& run) {
                 g.labels.push_back(
                     fmt::format("M = {}, beta = {} deg", num(machs[i]), num(betas[j] * rad2deg)));
                 g.figure_ids.push_back(id);
-                add(static_slice(t, machs[i], betas[j], id), plotted);
+                // With a comparison every slice at the sideslip nearest 0 is written too.
+                const bool beta0 = std::none_of(betas.begin(), betas.end(), [&](double b) {
+                    return std::abs(b) < std::abs(betas[j]) - 1e-12;
+                });
+                add(static_slice(t, machs[i], betas[j], id, second), plotted || (second && beta0));
             }
         out.groups.push_back(std::move(g));
     }
@@ -430,12 +622,26 @@ ReportContent build_content(const RunData& run) {
                 const std::string id = fmt::format("tables-{}-M{}", name, i);
                 g.labels.push_back(fmt::format("M = {}", num(machs[i])));
                 g.figure_ids.push_back(id);
-                add(control_slice(name, entries, machs[i], id), i == machs.size() / 2);
+                add(control_slice(name, *run.tables, machs[i], id, second), i == machs.size() / 2);
             }
             out.groups.push_back(std::move(g));
         }
         if (run.tables->dynamic)
             if (auto f = dynamic_figure(*run.tables->dynamic)) add(std::move(*f), true);
+        if (second && out.comparison && !out.comparison->dynamic_columns.empty()) {
+            const std::vector<double> machs = distinct(run.tables->dynamic->at("mach"));
+            FigureGroup g{"tables-dynamic-compare", "Mach", {}, {}, machs.size() / 2};
+            for (std::size_t i = 0; i < machs.size(); ++i) {
+                const std::string id = fmt::format("tables-dynamic-compare-M{}", i);
+                g.labels.push_back(fmt::format("M = {}", num(machs[i])));
+                g.figure_ids.push_back(id);
+                add(dynamic_compare_figure(*run.tables, *second, out.comparison->dynamic_columns,
+                                           machs[i], id),
+                    true);
+            }
+            out.groups.push_back(std::move(g));
+        }
+        if (out.comparison) add(summary_figure(*out.comparison), true);
     }
     for (std::size_t k = 0; k < run.manoeuvres.size(); ++k) {
         const ManoeuvreData& m = run.manoeuvres[k];

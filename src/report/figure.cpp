@@ -43,6 +43,8 @@ const char* style_name(SeriesStyle s) {
             return "dashed";
         case SeriesStyle::markers:
             return "markers";
+        case SeriesStyle::squares:
+            return "squares";
         case SeriesStyle::band:
             return "band";
     }
@@ -132,13 +134,18 @@ std::string svg_panel(const Panel& p, double ox, double oy) {
                 pts += fmt::format("{:.2f},{:.2f} ", X(se.x[i]), Y(se.y_upper[i]));
             for (std::size_t i = se.x.size(); i-- > 0;)
                 pts += fmt::format("{:.2f},{:.2f} ", X(se.x[i]), Y(se.y[i]));
-            s += fmt::format(R"(<polygon points="{}" fill="{}" fill-opacity="0.2" stroke="none"/>)",
-                             pts, se.colour);
+            s += fmt::format(R"(<polygon points="{}" fill="{}" fill-opacity="{}" stroke="none"/>)",
+                             pts, se.colour, se.opacity);
         } else if (se.style == SeriesStyle::markers) {
             for (std::size_t i = 0; i < se.x.size(); ++i)
                 s += fmt::format(
                     R"(<circle cx="{:.2f}" cy="{:.2f}" r="3" fill="none" stroke="{}" stroke-width="1.2"/>)",
                     X(se.x[i]), Y(se.y[i]), se.colour);
+        } else if (se.style == SeriesStyle::squares) {
+            for (std::size_t i = 0; i < se.x.size(); ++i)
+                s += fmt::format(
+                    R"(<rect x="{:.2f}" y="{:.2f}" width="6" height="6" fill="none" stroke="{}" stroke-width="1.2"/>)",
+                    X(se.x[i]) - 3, Y(se.y[i]) - 3, se.colour);
         } else {
             std::string pts;
             for (std::size_t i = 0; i < se.x.size(); ++i)
@@ -189,15 +196,16 @@ std::string csv_text(const std::string& s) {
 
 std::string colour_of(const std::string& key) {
     static const std::map<std::string, std::string> colours{
-        {"table", "#1f77b4"},      {"replay", "#d62728"},    {"samples", "#111111"},
-        {"difference", "#9467bd"}, {"tolerance", "#7f7f7f"}, {"flag", "#ffb000"},
-        {"nodes", "#111111"},      {"V", "#1f77b4"},         {"altitude", "#8c564b"},
-        {"alpha", "#d62728"},      {"beta", "#ff7f0e"},      {"phi", "#2ca02c"},
-        {"theta", "#17becf"},      {"psi", "#bcbd22"},       {"p", "#2ca02c"},
-        {"q", "#17becf"},          {"r", "#bcbd22"},         {"nz", "#e377c2"},
-        {"elevator", "#9467bd"},   {"aileron", "#8c564b"},   {"rudder", "#e377c2"},
-        {"throttle", "#7f7f7f"},   {"mach", "#1f77b4"},      {"path", "#1f77b4"},
-        {"delta_min", "#2ca02c"},  {"delta_max", "#ff7f0e"},
+        {"table", "#1f77b4"},       {"replay", "#d62728"},      {"samples", "#111111"},
+        {"difference", "#9467bd"},  {"tolerance", "#7f7f7f"},   {"flag", "#ffb000"},
+        {"nodes", "#111111"},       {"V", "#1f77b4"},           {"altitude", "#8c564b"},
+        {"alpha", "#d62728"},       {"beta", "#ff7f0e"},        {"phi", "#2ca02c"},
+        {"theta", "#17becf"},       {"psi", "#bcbd22"},         {"p", "#2ca02c"},
+        {"q", "#17becf"},           {"r", "#bcbd22"},           {"nz", "#e377c2"},
+        {"elevator", "#9467bd"},    {"aileron", "#8c564b"},     {"rudder", "#e377c2"},
+        {"throttle", "#7f7f7f"},    {"mach", "#1f77b4"},        {"path", "#1f77b4"},
+        {"delta_min", "#2ca02c"},   {"delta_max", "#ff7f0e"},   {"compare", "#c2185b"},
+        {"compare_min", "#6a3d9a"}, {"compare_max", "#c2185b"},
     };
     const auto it = colours.find(key);
     return it == colours.end() ? std::string("#7f7f7f") : it->second;
@@ -227,7 +235,10 @@ nlohmann::json to_json(const Figure& f) {
                               {"style", style_name(s.style)},
                               {"x", rounded(s.x)},
                               {"y", rounded(s.y)}};
-            if (s.style == SeriesStyle::band) js["y_upper"] = rounded(s.y_upper);
+            if (s.style == SeriesStyle::band) {
+                js["y_upper"] = rounded(s.y_upper);
+                js["opacity"] = s.opacity;
+            }
             if (!s.legend) js["legend"] = false;
             jp["series"].push_back(std::move(js));
         }
@@ -278,12 +289,16 @@ std::string to_svg(const Figure& f) {
         }
         if (s->style == SeriesStyle::band)
             legend += fmt::format(
-                R"(<rect x="{:.1f}" y="{:.1f}" width="22" height="10" fill="{}" fill-opacity="0.25"/>)",
-                lx, ly - 9, s->colour);
+                R"(<rect x="{:.1f}" y="{:.1f}" width="22" height="10" fill="{}" fill-opacity="{}"/>)",
+                lx, ly - 9, s->colour, std::min(1.0, s->opacity + 0.05));
         else if (s->style == SeriesStyle::markers)
             legend += fmt::format(
                 R"(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="none" stroke="{}" stroke-width="1.2"/>)",
                 lx + 11, ly - 4, s->colour);
+        else if (s->style == SeriesStyle::squares)
+            legend += fmt::format(
+                R"(<rect x="{:.1f}" y="{:.1f}" width="6" height="6" fill="none" stroke="{}" stroke-width="1.2"/>)",
+                lx + 8, ly - 7, s->colour);
         else
             legend += fmt::format(
                 R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" stroke-width="2"{}/>)",

@@ -149,73 +149,208 @@ std::string aircraft_section(const AircraftInfo& a) {
     return s + "</section>\n";
 }
 
-std::string tables_section(const TablesData& t, const ReportContent& c) {
-    std::string s = "<section id=\"tables\"><h2>Aerodynamic tables</h2>\n";
-    s += fmt::format("<p class=\"note\">From <code>{}</code>.</p>\n", escape_html(t.dir.string()));
-    s += missing_note(t.missing, "the tables directory");
-    const auto& j = t.summary;
-    if (j.is_object()) {
-        s += "<h3>Campaign</h3><table class=\"num\">";
-        s += fmt::format("<tr><td class=\"k\">campaign</td><td class=\"k\">{}</td></tr>",
-                         jnum(j, {"campaign"}));
-        s += fmt::format("<tr><td class=\"k\">source</td><td class=\"k\">{} ({})</td></tr>",
-                         jnum(j, {"source", "name"}), jnum(j, {"source", "fingerprint"}));
-        s += fmt::format(
-            "<tr><td class=\"k\">samples evaluated / reused / failed / total</td><td>{} / {} / {} "
-            "/ "
-            "{}</td></tr>",
-            jnum(j, {"samples", "evaluated"}), jnum(j, {"samples", "reused"}),
-            jnum(j, {"samples", "failed"}), jnum(j, {"samples", "total"}));
-        s += fmt::format("<tr><td class=\"k\">wall time [s]</td><td>{}</td></tr>",
-                         jnum(j, {"wall_time_s"}));
-        s += fmt::format("<tr><td class=\"k\">sample wall time [s]</td><td>{}</td></tr></table>\n",
-                         jnum(j, {"sample_wall_time_s"}));
-        if (j.contains("scenarios") && j["scenarios"].is_array()) {
-            s += "<h3>Scenarios (leave-one-out RMSE relative to the coefficient's range)</h3>"
-                 "<table class=\"num\"><tr><th class=\"k\">scenario</th><th>samples</th>"
-                 "<th>failed</th><th class=\"k\">stop</th>";
-            for (const char* k : coefficient_names) s += fmt::format("<th>{}</th>", k);
+/// The campaign of a tables directory: source, samples, times, scenarios, table entries.
+std::string campaign_html(const nlohmann::json& j) {
+    std::string s = "<table class=\"num\">";
+    s += fmt::format("<tr><td class=\"k\">campaign</td><td class=\"k\">{}</td></tr>",
+                     jnum(j, {"campaign"}));
+    s += fmt::format("<tr><td class=\"k\">source</td><td class=\"k\">{} ({})</td></tr>",
+                     jnum(j, {"source", "name"}), jnum(j, {"source", "fingerprint"}));
+    s += fmt::format(
+        "<tr><td class=\"k\">samples evaluated / reused / failed / total</td><td>{} / {} / {} "
+        "/ "
+        "{}</td></tr>",
+        jnum(j, {"samples", "evaluated"}), jnum(j, {"samples", "reused"}),
+        jnum(j, {"samples", "failed"}), jnum(j, {"samples", "total"}));
+    s += fmt::format("<tr><td class=\"k\">wall time [s]</td><td>{}</td></tr>",
+                     jnum(j, {"wall_time_s"}));
+    s += fmt::format("<tr><td class=\"k\">sample wall time [s]</td><td>{}</td></tr></table>\n",
+                     jnum(j, {"sample_wall_time_s"}));
+    if (j.contains("scenarios") && j["scenarios"].is_array()) {
+        s += "<h3>Scenarios (leave-one-out RMSE relative to the coefficient's range)</h3>"
+             "<table class=\"num\"><tr><th class=\"k\">scenario</th><th>samples</th>"
+             "<th>failed</th><th class=\"k\">stop</th>";
+        for (const char* k : coefficient_names) s += fmt::format("<th>{}</th>", k);
+        s += "</tr>\n";
+        for (const auto& sc : j["scenarios"]) {
+            if (!sc.is_object()) continue;
+            s += fmt::format(
+                "<tr><td class=\"k\">{}</td><td>{}</td><td>{}</td><td class=\"k\">{}</td>",
+                jnum(sc, {"scenario"}), jnum(sc, {"samples_done"}), jnum(sc, {"samples_failed"}),
+                jnum(sc, {"stop_reason"}));
+            for (const char* k : coefficient_names)
+                s += fmt::format("<td>{}</td>", jnum(sc, {"loo", k, "relative"}));
             s += "</tr>\n";
-            for (const auto& sc : j["scenarios"]) {
-                if (!sc.is_object()) continue;
-                s += fmt::format(
-                    "<tr><td class=\"k\">{}</td><td>{}</td><td>{}</td><td class=\"k\">{}</td>",
-                    jnum(sc, {"scenario"}), jnum(sc, {"samples_done"}),
-                    jnum(sc, {"samples_failed"}), jnum(sc, {"stop_reason"}));
-                for (const char* k : coefficient_names)
-                    s += fmt::format("<td>{}</td>", jnum(sc, {"loo", k, "relative"}));
-                s += "</tr>\n";
-            }
-            s += "</table>\n";
         }
-        if (j.contains("table_entries") && j["table_entries"].is_object()) {
-            s += "<p class=\"note\">Table entries: ";
-            for (auto it = j["table_entries"].begin(); it != j["table_entries"].end(); ++it)
-                s += fmt::format("{} {}; ", escape_html(it.key()),
-                                 escape_html(json_text(it.value())));
-            s += "</p>\n";
-        }
+        s += "</table>\n";
     }
+    if (j.contains("table_entries") && j["table_entries"].is_object()) {
+        s += "<p class=\"note\">Table entries: ";
+        for (auto it = j["table_entries"].begin(); it != j["table_entries"].end(); ++it)
+            s += fmt::format("{} {}; ", escape_html(it.key()), escape_html(json_text(it.value())));
+        s += "</p>\n";
+    }
+    return s;
+}
+
+/// A number of the comparison ("–" for NaN: a table that does not reach the point).
+std::string cnum(double v) {
+    return std::isfinite(v) ? num(v) : std::string("&ndash;");
+}
+
+std::string degrees_list(const std::vector<double>& v) {
+    std::string s;
+    for (const double x : v) s += (s.empty() ? "" : ", ") + num(x * rad2deg);
+    return s.empty() ? std::string("&ndash;") : s;
+}
+
+/// The comparison's summary: per Mach the slopes and zero-incidence coefficients of both tables
+/// and their ratio, the control powers, the slices drawn from interpolation or left out.
+std::string comparison_html(const Comparison& cmp, const ReportContent& c) {
+    const std::string a = escape_html(cmp.main_label), b = escape_html(cmp.other_label);
+    std::string s = fmt::format("<h3 id=\"tables-compare\">Comparison: {} and {}</h3>\n", a, b);
+    s += fmt::format(
+        "<p class=\"note\">Per Mach number of the {0} table at its sideslip nearest 0: "
+        "CL<sub>α</sub> and Cm<sub>α</sub> [1/rad] by least squares over the α points given "
+        "(the {0} table's breakpoints in [−2°, 4°], or the three nearest 1° inside both "
+        "tables), CL, Cm and CD at α = 0; each table evaluated through its own entries "
+        "(multilinear between breakpoints, no Kriging refit). Ratio = {1} / {0}; "
+        "&ndash; where a table does not reach the point.</p>\n",
+        a, b);
+    static const std::array<const char*, 5> heads{
+        "CL<sub>α</sub> [1/rad]", "Cm<sub>α</sub> [1/rad]", "CL(α=0)", "Cm(α=0)", "CD(α=0)"};
+    s += "<div class=\"wide\"><table class=\"num\" id=\"compare-summary\"><tr><th "
+         "rowspan=\"2\">Mach</th><th rowspan=\"2\">β [deg]</th><th rowspan=\"2\" "
+         "class=\"k\">α points [deg]</th>";
+    for (const char* h : heads) s += fmt::format("<th colspan=\"3\">{}</th>", h);
+    s += "</tr>\n<tr>";
+    for (std::size_t k = 0; k < heads.size(); ++k)
+        s += fmt::format("<th>{}</th><th>{}</th><th>ratio</th>", a, b);
+    s += "</tr>\n";
+    for (const auto& m : cmp.machs) {
+        s += fmt::format("<tr><td>{}</td><td>{}</td><td class=\"k\">{}</td>", num(m.mach),
+                         num(m.beta * rad2deg), degrees_list(m.fit_alpha));
+        for (std::size_t k = 0; k < summary_names.size(); ++k)
+            s += fmt::format("<td>{}</td><td>{}</td><td>{}</td>", cnum(m.main[k]), cnum(m.other[k]),
+                             cnum(m.ratio(k)));
+        s += "</tr>\n";
+    }
+    s += "</table></div>\n";
+    if (!cmp.controls.empty()) {
+        s += fmt::format(
+            "<h3>Control power</h3><p class=\"note\">dC/dδ [1/rad] at α = 0, β = 0 and the {0} "
+            "control table's middle Mach number: least squares of the increments over the "
+            "deflections given (the {0} table's in [−10°, 10°] inside both tables, or the "
+            "three nearest 0). Every coefficient is in the JSON output (--json).</p>\n",
+            a);
+        s += fmt::format(
+            "<table class=\"num\" id=\"compare-controls\"><tr><th class=\"k\">control</th><th "
+            "class=\"k\">coefficient</th><th>Mach</th><th class=\"k\">δ points "
+            "[deg]</th><th>{}</th><th>{}</th><th>ratio</th></tr>\n",
+            a, b);
+        for (const auto& cs : cmp.controls) {
+            // The coefficients a control mainly moves.
+            std::vector<std::size_t> ks{0, 1, 4};  // elevator: CL CD Cm
+            if (cs.control == "aileron") ks = {3, 5};
+            if (cs.control == "rudder") ks = {2, 3, 5};
+            for (const std::size_t k : ks)
+                s += fmt::format(
+                    "<tr><td class=\"k\">{}</td><td class=\"k\">d{}/dδ</td><td>{}</td><td "
+                    "class=\"k\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                    escape_html(cs.control), coefficient_names[k], num(cs.mach),
+                    degrees_list(cs.fit_delta), cnum(cs.main[k]), cnum(cs.other[k]),
+                    cnum(cs.ratio(k)));
+        }
+        s += "</table>\n";
+    }
+    if (!cmp.controls_only_main.empty()) {
+        std::string list;
+        for (const auto& n : cmp.controls_only_main)
+            list += (list.empty() ? "" : ", ") + escape_html(n);
+        s += fmt::format("<p class=\"note\">Control tables only in {}: {}.</p>\n", a, list);
+    }
+    std::string interpolated, outside;
+    for (const auto& [mb, mode] : cmp.slices) {
+        const std::string label = fmt::format("M {} β {}°", num(mb[0]), num(mb[1] * rad2deg));
+        if (mode == SliceMode::interpolated)
+            interpolated += (interpolated.empty() ? "" : ", ") + label;
+        else if (mode == SliceMode::outside)
+            outside += (outside.empty() ? "" : ", ") + label;
+    }
+    if (!interpolated.empty())
+        s += fmt::format(
+            "<p class=\"note\">Static slices where {} is interpolated (it lacks that Mach number "
+            "or sideslip): {}.</p>\n",
+            b, interpolated);
+    if (!outside.empty())
+        s += fmt::format(
+            "<p class=\"note missing\">Static slices outside the Mach or sideslip range of {} "
+            "(only {} drawn): {}.</p>\n",
+            b, a, outside);
+    if (std::any_of(c.figures.begin(), c.figures.end(),
+                    [](const Figure& f) { return f.id == "tables-compare-summary"; }))
+        s += plot("tables-compare-summary");
+    return s;
+}
+
+std::string tables_section(const RunData& run, const ReportContent& c) {
+    const TablesData& t = *run.tables;
+    std::string s = "<section id=\"tables\"><h2>Aerodynamic tables</h2>\n";
+    s += fmt::format("<p class=\"note\">From <code>{}</code>{}.</p>\n", escape_html(t.dir.string()),
+                     run.compare ? " (" + escape_html(t.label) + ")" : std::string());
+    s += missing_note(t.missing, "the tables directory");
+    if (run.compare)
+        s += fmt::format(
+            "<p class=\"note\">Compared with <b>{}</b> from <code>{}</code>: drawn on the same "
+            "axes in its own colour, with a lighter ±2σ band and its samples as squares.</p>\n",
+            escape_html(run.compare->label), escape_html(run.compare->dir.string()));
+    if (t.summary.is_object()) s += "<h3>Campaign</h3>" + campaign_html(t.summary);
+    if (run.compare) {
+        s += missing_note(run.compare->missing, "the compared tables directory");
+        if (run.compare->summary.is_object())
+            s += fmt::format(
+                "<details><summary class=\"note\">campaign of {}</summary>\n{}</details>\n",
+                escape_html(run.compare->label), campaign_html(run.compare->summary));
+    }
+    if (c.comparison) s += comparison_html(*c.comparison, c);
+    const std::string both =
+        run.compare ? fmt::format(
+                          " Beside them the {} table (its own entries where it has the "
+                          "Mach number and sideslip, else interpolated at these α "
+                          "breakpoints inside its range).",
+                          escape_html(run.compare->label))
+                    : std::string();
     for (const auto& g : c.groups) {
         if (g.id == "tables-static") {
             s += "<h3>Static table</h3><p class=\"note\">Each coefficient against α at the chosen "
                  "Mach number and sideslip: the table (Kriging mean at the entries), its ±2σ band "
-                 "and the flow-solver samples at that Mach number and sideslip.</p>\n";
+                 "and the flow-solver samples at that Mach number and sideslip." +
+                 both + "</p>\n";
             s += group_html(g);
         }
     }
     for (const auto& g : c.groups) {
-        if (g.id == "tables-static" || g.id.rfind("tables-", 0) != 0) continue;
+        if (g.id == "tables-static" || g.id == "tables-dynamic-compare" ||
+            g.id.rfind("tables-", 0) != 0)
+            continue;
         s += fmt::format(
             "<h3>Control table: {}</h3><p class=\"note\">Increments ΔC against α at "
-            "β = 0 for the smallest and largest deflection, with ±2σ bands.</p>\n",
-            escape_html(g.id.substr(7)));
+            "β = 0 for the smallest and largest deflection, with ±2σ bands.{}</p>\n",
+            escape_html(g.id.substr(7)),
+            run.compare ? fmt::format(" Dashed: {} at the same deflections.",
+                                      escape_html(run.compare->label))
+                        : std::string());
         s += group_html(g);
     }
     if (std::any_of(c.figures.begin(), c.figures.end(),
                     [](const Figure& f) { return f.id == "tables-dynamic"; })) {
         s += "<h3>Dynamic derivatives</h3>\n" + plot("tables-dynamic");
     }
+    for (const auto& g : c.groups)
+        if (g.id == "tables-dynamic-compare")
+            s += fmt::format("<h3>Dynamic derivatives of {} and {}</h3>\n", escape_html(t.label),
+                             escape_html(run.compare->label)) +
+                 group_html(g);
     return s + "</section>\n";
 }
 
@@ -484,7 +619,7 @@ std::string render_html(const RunData& run, const ReportContent& content) {
     }
     if (run.tables) {
         nav += "<a href=\"#tables\">Tables</a>";
-        body += tables_section(*run.tables, content);
+        body += tables_section(run, content);
     }
     for (std::size_t k = 0; k < run.manoeuvres.size(); ++k) {
         nav +=

@@ -145,14 +145,35 @@ std::string find_chromium() {
 }
 
 nlohmann::json ReportResult::to_json() const {
-    return {{"layout", layout},        {"parts", parts}, {"missing", missing},
-            {"figures", n_figures},    {"files", files}, {"png_note", png_note},
-            {"html_bytes", html_bytes}};
+    nlohmann::json j{{"layout", layout},        {"parts", parts}, {"missing", missing},
+                     {"figures", n_figures},    {"files", files}, {"png_note", png_note},
+                     {"html_bytes", html_bytes}};
+    if (!comparison.is_null()) j["comparison"] = comparison;
+    return j;
 }
 
 ReportResult make_report(const ReportOptions& o) {
     if (o.html.empty()) throw InputError("--html: no output file given; expected a file name");
-    const RunData run = read_run(o.run_dir);
+    RunData run = read_run(o.run_dir);
+    if (o.compare_tables) {
+        if (!run.tables || !run.tables->tables.count("static"))
+            throw InputError(fmt::format(
+                "--compare-tables: {} has no static table to compare with; expected a run "
+                "directory with tables/ or a `manta tables --out` directory",
+                o.run_dir.string()));
+        TablesData other = read_compare_tables(*o.compare_tables);
+        check_same_coefficients(*run.tables, other);
+        if (!o.compare_label.empty()) {
+            other.label = o.compare_label;
+        } else if (other.label == run.tables->label) {
+            // Two tables from the same source: the directory names tell them apart.
+            const fs::path norm = fs::absolute(other.dir).lexically_normal();
+            const std::string leaf =
+                (norm.has_filename() ? norm : norm.parent_path()).filename().string();
+            other.label += " (" + leaf + ")";
+        }
+        run.compare = std::move(other);
+    }
     const ReportContent content = build_content(run);
     const std::string page = render_html(run, content);
 
@@ -160,14 +181,17 @@ ReportResult make_report(const ReportOptions& o) {
     r.layout = run.layout;
     if (run.aircraft) r.parts.push_back("aircraft");
     if (run.tables) r.parts.push_back("tables");
+    if (run.compare) r.parts.push_back("compare-tables");
     for (const auto& m : run.manoeuvres) r.parts.push_back("manoeuvre:" + m.name);
     for (const auto& rp : run.replays) r.parts.push_back("replay:" + rp.name);
     if (run.run.is_object()) r.parts.push_back("provenance");
     r.missing = run.missing;
+    if (content.comparison) r.comparison = content.comparison->to_json();
     auto add_missing = [&](const std::string& where, const std::vector<std::string>& files) {
         for (const auto& f : files) r.missing.push_back(where + "/" + f);
     };
     if (run.tables) add_missing("tables", run.tables->missing);
+    if (run.compare) add_missing("compare-tables", run.compare->missing);
     for (const auto& m : run.manoeuvres) add_missing("manoeuvres/" + m.name, m.missing);
     for (const auto& rp : run.replays) add_missing("replay/" + rp.name, rp.missing);
     // Plots in the page: one per menu, per flight path and per figure outside the menus.

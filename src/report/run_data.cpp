@@ -221,11 +221,21 @@ TablesData read_tables(const fs::path& dir) {
     TablesData d;
     d.dir = dir;
     d.summary = optional_json(dir / "summary.json", d.missing);
+    const fs::path norm = fs::absolute(dir).lexically_normal();
+    d.label = (norm.has_filename() ? norm : norm.parent_path()).filename().string();
+    if (d.summary.is_object() && d.summary.contains("source") && d.summary["source"].is_object() &&
+        d.summary["source"].contains("name") && d.summary["source"]["name"].is_string() &&
+        !d.summary["source"]["name"].get<std::string>().empty())
+        d.label = d.summary["source"]["name"].get<std::string>();
     if (fs::exists(dir / "tables.csv")) {
         const TextCsv t = read_text_csv(dir / "tables.csv");
         const std::size_t ct = t.require("table"), ca = t.require("alpha_deg"),
                           cm = t.require("mach"), cb = t.require("beta_deg"),
                           cd = t.require("delta_deg");
+        for (const auto& c : t.columns)
+            if (c != "table" && c != "alpha_deg" && c != "mach" && c != "beta_deg" &&
+                c != "delta_deg" && c.rfind("sigma_", 0) != 0)
+                d.coefficient_columns.push_back(c);
         std::array<std::size_t, 6> cc{}, cs{};
         for (std::size_t k = 0; k < 6; ++k) {
             cc[k] = t.require(coefficient_names[k]);

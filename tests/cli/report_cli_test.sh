@@ -78,5 +78,59 @@ check "nothing to report" 2 "$manta" report "$work/empty" --html "$work/x.html"
 absent "no page for nothing" "$work/x.html"
 check "missing --html" 2 "$manta" report "$run"
 
+# A second table set beside the tables (--compare-tables): the fixture's with CL scaled by 1.1.
+cmp=$work/scaled
+cp -r "$run/tables" "$cmp"
+awk -F, -v OFS=, -v CONVFMT=%.17g '/^#/ || $1 == "table" { print; next } { $6 = $6 * 1.1; print }' \
+    "$run/tables/tables.csv" > "$cmp/tables.csv"
+sed -i 's/"name": "vlm"/"name": "scaled"/' "$cmp/summary.json"
+check "report --compare-tables" 0 "$manta" report "$run" --html "$work/cmp.html" --compare-tables "$cmp" --json
+if python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+c = d["comparison"]
+assert "compare-tables" in d["parts"], d["parts"]
+assert c["main"]["label"] == "vlm" and c["compare"]["label"] == "scaled", c["main"]
+assert len(c["summary"]) == 2
+for e in c["summary"]:
+    assert abs(e["ratio"]["CL_alpha"] - 1.1) < 1e-9 and abs(e["ratio"]["CL_0"] - 1.1) < 1e-9, e
+    assert abs(e["ratio"]["Cm_alpha"] - 1) < 1e-12 and e["main"]["CL_alpha"] > 3, e
+    assert e["fit_alpha_deg"] == [-2, 0, 2, 4], e
+el = [x for x in c["controls"] if x["control"] == "elevator"][0]
+assert abs(el["ratio"]["dCL_delevator"] - 1.1) < 1e-9 and el["main"]["dCm_delevator"] < 0, el
+assert c["slices"]["exact"] == 4
+' "$work/out.txt"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: --compare-tables --json"; head -c 600 "$work/out.txt"; fi
+contains "comparison summary in the page" "$work/cmp.html" 'id="compare-summary"'
+contains "comparison data in the page" "$work/cmp.html" '"name":"scaled samples"'
+check "compare a tables directory, labelled, with figures" 0 "$manta" report "$run/tables" --html "$work/cmp2.html" \
+    --compare-tables "$cmp/" --compare-label "VLM x1.1" --figures "$work/cmpfig"
+contains "summary lines" "$work/out.txt" "compared with VLM x1.1 .*vlm / VLM x1.1 \(ratio\)"
+contains "summary line per Mach" "$work/out.txt" "M 0.2: CL_alpha [0-9.]+ / [0-9.]+ \(1.1\)"
+for f in tables-compare-summary.svg tables-compare-summary.csv tables-static-M0-b0.svg tables-static-M1-b0.csv \
+         tables-elevator-M1.svg tables-dynamic-compare-M0.svg tables-dynamic-compare-M1.csv; do
+    exists "comparison figure $f" "$work/cmpfig/$f"
+done
+contains "both tables in a static slice's CSV" "$work/cmpfig/tables-static-M0-b0.csv" "^0,VLM x1.1,"
+contains "the main table too" "$work/cmpfig/tables-static-M0-b0.csv" "^0,vlm,"
+
+# Bad second tables: one line, exit 2, the old page left as it was.
+cp "$work/cmp.html" "$work/keep2.html"
+check "compare with a run directory" 2 "$manta" report "$run" --html "$work/cmp.html" --compare-tables "$run"
+contains "not a tables directory" "$work/err.txt" "no tables.csv; --compare-tables expects a .manta tables --out. directory \(such as"
+if [ "$(wc -l <"$work/err.txt")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: error is not one line"; cat "$work/err.txt"; fi
+if cmp -s "$work/cmp.html" "$work/keep2.html"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a failed comparison changed the page"; fi
+check "compare with nothing" 2 "$manta" report "$run" --html "$work/x.html" --compare-tables "$work/nowhere"
+contains "compare dir not a directory" "$work/err.txt" "nowhere: not a directory"
+mkdir -p "$work/cx"
+cp "$cmp"/* "$work/cx/"
+awk -F, -v OFS=, '/^#/ { print; next } $1 == "table" { print $0, "CX"; next } { print $0, 0 }' "$cmp/tables.csv" > "$work/cx/tables.csv"
+check "mismatched coefficient sets" 2 "$manta" report "$run" --html "$work/x.html" --compare-tables "$work/cx"
+contains "coefficients named" "$work/err.txt" "coefficient columns CL,CD,CY,Cl,Cm,Cn,CX differ from those of .*tables.csv \(CL,CD,CY,Cl,Cm,Cn\)"
+if [ "$(wc -l <"$work/err.txt")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: error is not one line"; cat "$work/err.txt"; fi
+check "nothing to compare with" 2 "$manta" report "$run/replay/immelmann" --html "$work/x.html" --compare-tables "$cmp"
+contains "no static table message" "$work/err.txt" "has no static table to compare with"
+absent "no page after failed comparisons" "$work/x.html"
+check "--compare-label needs --compare-tables" 2 "$manta" report "$run" --html "$work/x.html" --compare-label x
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

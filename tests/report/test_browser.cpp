@@ -2,7 +2,8 @@
 /// The report in a real browser: headless chromium opens the report of the fixture run
 /// directory, the test checks that every plot was drawn (the page counts the plot elements that
 /// its script marked data-rendered) with no script or console error, and saves a screenshot in
-/// the build tree (tests/report/browser/report.png).
+/// the build tree (tests/report/browser/report.png); the same for a page with --compare-tables
+/// (tests/report/browser/compare.png).
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 
 #include "manta/core/io.hpp"
 #include "manta/report/report.hpp"
+#include "table_copies.hpp"
 
 namespace fs = std::filesystem;
 using namespace manta::report;
@@ -75,6 +77,46 @@ int attr(const std::string& dom, const std::string& name) {
     return std::stoi(m[1].str());
 }
 
+/// Open `html` in headless chromium with the probe script appended: every plot drawn, no
+/// error, the interactions work, no console message. `tag` names the files in the work folder.
+void check_page(const std::string& chromium, const fs::path& html, int plots,
+                const std::string& tag) {
+    std::string page = manta::core::read_file(html);
+    page.insert(page.rfind("</body>"), interaction_script);
+    const fs::path probed = work / (tag + "_probed.html");
+    manta::core::write_file_atomic(probed, page);
+
+    const fs::path dom = work / (tag + "_dom.html"), log = work / (tag + "_console.txt");
+    const int rc = shell("'" + chromium + "'" + flags() +
+                         " --enable-logging=stderr --v=0 --dump-dom 'file://" + probed.string() +
+                         "' > '" + dom.string() + "' 2> '" + log.string() + "'");
+    ASSERT_EQ(rc, 0) << "chromium --dump-dom failed; see " << log;
+    const std::string d = manta::core::read_file(dom);
+    const int total = attr(d, "data-plots-total"), rendered = attr(d, "data-plots-rendered");
+    EXPECT_EQ(total, plots) << tag << ": plot elements in the page";
+    EXPECT_EQ(rendered, total) << tag << ": plots drawn by the page's script";
+    EXPECT_EQ(attr(d, "data-errors"), 0) << tag << ": script errors caught by window.onerror:\n"
+                                         << d.substr(d.find("id=\"errors\""), 400);
+    EXPECT_EQ(attr(d, "data-test-readout"), 1) << tag << ": hover readout shown with values";
+    EXPECT_EQ(attr(d, "data-test-rotate"), 1) << tag << ": drag rotated the 3-D path";
+    EXPECT_EQ(attr(d, "data-test-zoom"), 1) << tag << ": the wheel zoomed the 3-D path";
+    EXPECT_EQ(attr(d, "data-test-menu"), 1) << tag << ": a menu choice drew another slice";
+    // Console messages chromium logs ("CONSOLE" lines): the page writes none.
+    const std::string console = manta::core::read_file(log);
+    std::size_t n_console = 0;
+    for (auto k = console.find(":CONSOLE"); k != std::string::npos;
+         k = console.find(":CONSOLE", k + 1))
+        ++n_console;
+    EXPECT_EQ(n_console, 0u) << console;
+
+    const fs::path shot = work / (tag + ".png");
+    ASSERT_EQ(shell("'" + chromium + "'" + flags() + " --window-size=1280,2000 --screenshot='" +
+                    shot.string() + "' 'file://" + html.string() + "' > /dev/null 2>&1"),
+              0);
+    ASSERT_TRUE(fs::exists(shot));
+    EXPECT_GT(fs::file_size(shot), 20000u) << "a blank page gives a tiny PNG";
+}
+
 }  // namespace
 
 TEST(Browser, EveryPlotRendersWithoutErrorsAndAScreenshotIsSaved) {
@@ -86,43 +128,21 @@ TEST(Browser, EveryPlotRendersWithoutErrorsAndAScreenshotIsSaved) {
     o.run_dir = fixture;
     o.html = work / "report.html";
     (void)make_report(o);
+    // Static, 3 controls, dynamic, histories, flight path, replay x3.
+    check_page(chromium, o.html, 10, "report");
+}
 
-    // A copy of the page with a script after the report's own that works the interactive parts
-    // with synthetic events and writes what happened on <body>: hover readout, rotating the 3-D
-    // path by a drag, zooming it by the wheel, choosing another slice in a figure menu.
-    std::string page = manta::core::read_file(o.html);
-    page.insert(page.rfind("</body>"), interaction_script);
-    const fs::path probed = work / "report_probed.html";
-    manta::core::write_file_atomic(probed, page);
-
-    const fs::path dom = work / "dom.html", log = work / "console.txt";
-    const int rc = shell("'" + chromium + "'" + flags() +
-                         " --enable-logging=stderr --v=0 --dump-dom 'file://" + probed.string() +
-                         "' > '" + dom.string() + "' 2> '" + log.string() + "'");
-    ASSERT_EQ(rc, 0) << "chromium --dump-dom failed; see " << log;
-    const std::string d = manta::core::read_file(dom);
-    const int total = attr(d, "data-plots-total"), rendered = attr(d, "data-plots-rendered");
-    EXPECT_EQ(total, 10) << "plot elements in the page: static, 3 controls, dynamic, histories, "
-                            "flight path, replay x3";
-    EXPECT_EQ(rendered, total) << "plots drawn by the page's script";
-    EXPECT_EQ(attr(d, "data-errors"), 0) << "script errors caught by window.onerror:\n"
-                                         << d.substr(d.find("id=\"errors\""), 400);
-    EXPECT_EQ(attr(d, "data-test-readout"), 1) << "hover readout shown with values";
-    EXPECT_EQ(attr(d, "data-test-rotate"), 1) << "drag rotated the 3-D path to azimuth -80 deg";
-    EXPECT_EQ(attr(d, "data-test-zoom"), 1) << "the wheel zoomed the 3-D path";
-    EXPECT_EQ(attr(d, "data-test-menu"), 1) << "a menu choice drew another static slice";
-    // Console messages chromium logs ("CONSOLE" lines): the page writes none.
-    const std::string console = manta::core::read_file(log);
-    std::size_t n_console = 0;
-    for (auto k = console.find(":CONSOLE"); k != std::string::npos;
-         k = console.find(":CONSOLE", k + 1))
-        ++n_console;
-    EXPECT_EQ(n_console, 0u) << console;
-
-    const fs::path shot = work / "report.png";
-    ASSERT_EQ(shell("'" + chromium + "'" + flags() + " --window-size=1280,2000 --screenshot='" +
-                    shot.string() + "' 'file://" + o.html.string() + "' > /dev/null 2>&1"),
-              0);
-    ASSERT_TRUE(fs::exists(shot));
-    EXPECT_GT(fs::file_size(shot), 20000u) << "a blank page gives a tiny PNG";
+TEST(Browser, ComparisonPageRendersEveryPlot) {
+    const std::string chromium = chromium_or_fail();
+    if (chromium.empty()) return;
+    fs::create_directories(work);
+    ReportOptions o;
+    o.run_dir = fixture;
+    o.html = work / "compare.html";
+    o.compare_tables = manta::report::test_data::scaled_copy("browser", {"CL", "sigma_CL"}, 1.1);
+    (void)make_report(o);
+    // The 10 plots of the run, each static and control figure with both tables, and the
+    // comparison's summary and dynamic-derivative figures.
+    check_page(chromium, o.html, 12, "compare");
+    fs::remove_all(*o.compare_tables);
 }

@@ -16,6 +16,7 @@ enum class SeriesStyle {
     line,     ///< solid polyline
     dashed,   ///< dashed polyline (reference levels, tolerances)
     markers,  ///< open circles (samples, collocation nodes)
+    squares,  ///< open squares (the samples of a second table set)
     band,     ///< filled band between y (lower) and y_upper (e.g. +-2 sigma)
 };
 
@@ -27,6 +28,7 @@ struct Series {
     std::vector<double> x, y;
     std::vector<double> y_upper;  ///< band only: upper edge (y is the lower edge)
     bool legend = true;           ///< listed in the figure's legend
+    double opacity = 0.2;         ///< band only: fill opacity (a second table set's: lighter)
 };
 
 /// A shaded x interval (e.g. a flagged part of a replay) with its label.
@@ -65,7 +67,9 @@ struct FlightPath {
 /// The colour of a quantity or source, the same in every figure: "table", "replay", "samples",
 /// "difference", "flag", "nodes" and the state and control names of the trajectory ("V",
 /// "altitude", "alpha", "beta", "phi", "theta", "psi", "p", "q", "r", "nz", "elevator",
-/// "aileron", "rudder", "throttle"). Unknown keys get a neutral grey.
+/// "aileron", "rudder", "throttle"), the control deflections "delta_min", "delta_max" and the
+/// second table set of a comparison "compare" (its deflections "compare_min", "compare_max").
+/// Unknown keys get a neutral grey.
 [[nodiscard]] std::string colour_of(const std::string& key);
 
 /// JSON of a figure for the page's renderer (numbers rounded to 7 significant digits).

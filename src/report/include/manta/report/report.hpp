@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "manta/report/compare.hpp"
 #include "manta/report/figure.hpp"
 #include "manta/report/run_data.hpp"
 
@@ -25,10 +26,11 @@ struct FigureGroup {
 
 /// Everything drawn in the report, built from the run data.
 struct ReportContent {
-    std::vector<Figure> figures;        ///< every x-y figure (ids unique)
-    std::vector<FlightPath> paths;      ///< one per manoeuvre
-    std::vector<FigureGroup> groups;    ///< menus over figures
-    std::vector<std::string> exported;  ///< ids written by --figures (every path too)
+    std::vector<Figure> figures;           ///< every x-y figure (ids unique)
+    std::vector<FlightPath> paths;         ///< one per manoeuvre
+    std::vector<FigureGroup> groups;       ///< menus over figures
+    std::vector<std::string> exported;     ///< ids written by --figures (every path too)
+    std::optional<Comparison> comparison;  ///< with a second table set (--compare-tables)
 };
 
 /// Build the figures of a run (pure; no files touched).
@@ -47,6 +49,9 @@ struct ReportOptions {
     std::optional<std::filesystem::path> figures_dir;  ///< --figures DIR
     bool png = false;      ///< also render PNGs with headless chromium (a note if it is absent)
     std::string chromium;  ///< browser executable ("" = search PATH for chromium)
+    /// --compare-tables DIR: a second `manta tables --out` directory drawn beside the tables.
+    std::optional<std::filesystem::path> compare_tables;
+    std::string compare_label;  ///< --compare-label ("" = from DIR's summary.json source)
 };
 
 /// What was done.
@@ -58,6 +63,7 @@ struct ReportResult {
     std::vector<std::string> files;    ///< files written (the page last)
     std::string png_note;              ///< why PNGs were not written ("" if they were / not asked)
     std::size_t html_bytes = 0;
+    nlohmann::json comparison;  ///< Comparison::to_json() (null without --compare-tables)
     /// As JSON (the --json output).
     [[nodiscard]] nlohmann::json to_json() const;
 };

@@ -90,6 +90,10 @@ struct Sample {
 /// A `manta tables --out` directory.
 struct TablesData {
     std::filesystem::path dir;
+    /// Name in the page and the legends: summary.json's source name ("vlm", "euler"), else the
+    /// directory's name; `--compare-label` replaces it for the second table.
+    std::string label;
+    std::vector<std::string> coefficient_columns;           ///< tables.csv's coefficient columns
     nlohmann::json summary;                                 ///< summary.json (null if absent)
     std::map<std::string, std::vector<TableEntry>> tables;  ///< "static", "elevator", ...
     std::vector<Sample> samples;                            ///< done samples (empty if absent)
@@ -129,6 +133,7 @@ struct RunData {
     nlohmann::json run;                     ///< run.json (null if absent)
     std::optional<AircraftInfo> aircraft;   ///< aircraft.yaml
     std::optional<TablesData> tables;       ///< tables/
+    std::optional<TablesData> compare;      ///< --compare-tables: a second table set
     std::vector<ManoeuvreData> manoeuvres;  ///< manoeuvres/<name>/, sorted by name
     std::vector<ReplayData> replays;        ///< replay/<name>/, sorted by name
     std::vector<std::string> missing;       ///< parts of the layout that were absent
