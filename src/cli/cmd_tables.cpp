@@ -176,9 +176,18 @@ nlohmann::json report_json(const tables::ScenarioReport& r) {
     return j;
 }
 
-/// The Euler source of a campaign: the mesh and the `manta cfd` configuration, set up as
-/// `manta cfd` sets up a case (`euler::EulerSource::from_files`); the flow condition comes from
-/// each sample.
+/// ConfigError naming the campaign key where a control table's deflections leave the aircraft
+/// file's control limits.
+void check_campaign_control_limits(const tables::Campaign& campaign,
+                                   const aircraft::AircraftDefinition& def) {
+    for (const auto& plan : campaign.controls) {
+        const auto& lim = plan.control == aero::Axis::elevator  ? def.limits.elevator
+                          : plan.control == aero::Axis::aileron ? def.limits.aileron
+                                                                : def.limits.rudder;
+        tables::check_control_limits(plan, lim[0], lim[1]);
+    }
+}
+
 /// The mesh of an Euler source with `mesh: {model, level}`: OUT/mesh/<aircraft>_<model>_<level>.su2
 /// with its companion, generated from the aircraft file on the first run and reused while the
 /// stamp beside it (the aircraft file's text, model and level) is unchanged.
@@ -217,20 +226,30 @@ std::filesystem::path campaign_mesh(const tables::SourceSpec& spec,
     return mesh;
 }
 
+/// The Euler source of a campaign: the mesh and the `manta cfd` configuration, set up as
+/// `manta cfd` sets up a case (`euler::EulerSource::from_files`); the flow condition comes from
+/// each sample.
 std::unique_ptr<aero::AeroSource> make_euler_source(const tables::Campaign& campaign,
                                                     const std::filesystem::path& out) {
     tables::SourceSpec spec = campaign.source;
-    if (!spec.mesh_model.empty()) spec.mesh = campaign_mesh(spec, out);
+    if (!spec.mesh_model.empty()) {
+        // The aircraft file is known: its control limits bound the tables' deflections, checked
+        // before the mesh is built (a missing file is campaign_mesh's error).
+        if (std::filesystem::exists(spec.aircraft))
+            check_campaign_control_limits(campaign, aircraft::load_aircraft(spec.aircraft));
+        spec.mesh = campaign_mesh(spec, out);
+    }
     if (!std::filesystem::exists(spec.mesh))
         throw ConfigError(
             fmt::format("{}: mesh file '{}' does not exist; expected a mesh that "
                         "manta cfd reads (SU2, gmsh, CGNS)",
                         spec.where, spec.mesh.string()));
-    if (!spec.launched) {
-        auto source = euler::EulerSource::from_files(spec.mesh, spec.cfd_config);
+    // Every table of `controls` needs a control surface of its mode, checked before any sample
+    // (in process and launched alike).
+    const auto check_controls = [&](const auto& source) {
         for (const auto& plan : campaign.controls) {
             const std::string name(aero::to_string(plan.control));
-            if (!source->has_control(name))
+            if (!source.has_control(name))
                 throw ConfigError(fmt::format(
                     "{}: {} has no control surface of mode '{}'; expected a control_surfaces "
                     "entry with mode: {} for each table of controls",
@@ -240,6 +259,10 @@ std::unique_ptr<aero::AeroSource> make_euler_source(const tables::Campaign& camp
                         : fmt::format("the CFD configuration '{}'", spec.cfd_config.string()),
                     name, name));
         }
+    };
+    if (!spec.launched) {
+        auto source = euler::EulerSource::from_files(spec.mesh, spec.cfd_config);
+        check_controls(*source);
         return source;
     }
     // Each sample a `manta cfd` job through the user's launcher, its run folder under OUT/cfd.
@@ -247,11 +270,13 @@ std::unique_ptr<aero::AeroSource> make_euler_source(const tables::Campaign& camp
     o.launcher = core::split_command(spec.launcher, spec.where + ": launcher");
     o.executable = self_executable();
     o.work_dir = std::filesystem::absolute(out / "cfd");
-    return std::make_unique<euler::LaunchedEulerSource>(
+    auto source = std::make_unique<euler::LaunchedEulerSource>(
         std::filesystem::absolute(spec.mesh),
         spec.cfd_config.empty() ? std::filesystem::path{}
                                 : std::filesystem::absolute(spec.cfd_config),
         std::move(o));
+    check_controls(*source);
+    return source;
 }
 
 int run_tables(const TablesArgs& a) {
@@ -280,13 +305,7 @@ int run_tables(const TablesArgs& a) {
         density.strip_width = spec.strip_width;
         VlmInput in = load_vlm_input(spec.aircraft.string(), density);
         if (in.geometry) {
-            const aircraft::AircraftDefinition def = aircraft::load_aircraft(spec.aircraft);
-            for (const auto& plan : campaign.controls) {
-                const auto& lim = plan.control == aero::Axis::elevator  ? def.limits.elevator
-                                  : plan.control == aero::Axis::aileron ? def.limits.aileron
-                                                                        : def.limits.rudder;
-                tables::check_control_limits(plan, lim[0], lim[1]);
-            }
+            check_campaign_control_limits(campaign, aircraft::load_aircraft(spec.aircraft));
         }
         auto vs = std::make_unique<vlm::VlmSource>(std::move(in.model),
                                                    spec.viscous ? in.geometry : std::nullopt);

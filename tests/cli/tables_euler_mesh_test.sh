@@ -77,5 +77,13 @@ check "unknown level" 2 "$manta" tables --campaign "$work/level.yaml" --out "$wo
 one_line "unknown level: one line" "$work/err.txt"
 contains "unknown level: lists the choices" "$work/err.txt" "coarse.*medium.*fine"
 
+# An elevator table beyond the aircraft file's limits (-25..15 deg): refused before the mesh is built.
+cp "$work/campaign.yaml" "$work/limits.yaml"
+printf '%s\n' 'controls:' '  elevator: {deflection_deg: [-30, 0, 10], samples: 2}' >> "$work/limits.yaml"
+check "elevator beyond the aircraft's limits" 2 "$manta" tables --campaign "$work/limits.yaml" --out "$work/bad4"
+one_line "elevator beyond the limits: one line" "$work/err.txt"
+contains "elevator beyond the limits: names the key" "$work/err.txt" "limits.yaml:[0-9]+.*controls.elevator.deflection_deg"
+if [ ! -e "$work/bad4/mesh" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: meshed before refusing the limits"; fi
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

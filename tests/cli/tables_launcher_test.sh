@@ -88,5 +88,13 @@ check "a launcher that fails" 1 "$manta" tables --campaign "$work/campaign_false
 contains "failed launcher: too few samples" "$work/err.txt" "0 done samples \(4 failed\)"
 contains "failed launcher: the error names the status and log" "$work/tabf/samples.csv" "exited with status 1 \(log .*job.log"
 
+# A launched campaign with a table of a control the mesh has no surface for (the ONERA M6 wing
+# has none): refused before any job starts, naming the campaign key.
+cp "$work/campaign_jobs.yaml" "$work/campaign_rudder.yaml"
+printf 'controls:\n  rudder: {deflection_deg: [-5, 0, 5]}\n' >> "$work/campaign_rudder.yaml"
+check "launched tables with a control the mesh lacks" 2 "$manta" tables --campaign "$work/campaign_rudder.yaml" --out "$work/tabr"
+contains "launched control message" "$work/err.txt" "campaign_rudder.yaml:.*no control surface of mode 'rudder'"
+if [ ! -d "$work/tabr/cfd" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: a job was started for a refused campaign"; fi
+
 echo "tables_launcher_test: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
+#include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/units.hpp"
 #include "manta/tables/campaign.hpp"
@@ -190,4 +192,48 @@ TEST(Campaign, LinspaceHitsBothEndsAndZero) {
     EXPECT_EQ(v.back(), core::deg(8.0));
     EXPECT_EQ(v[4], 0.0);
     EXPECT_FALSE(std::signbit(v[4]));
+}
+
+// The Ranger's Euler campaigns of examples/ranger2000: the half model's longitudinal tables and
+// the full model's static (alpha, Mach, sideslip), control and dynamic tables of the paper's
+// sec. III-IV.A (65 static solutions, 12 deflected solutions per control); every deflection
+// within the aircraft file's control limits.
+TEST(Campaign, TheRangerEulerCampaignsAreValid) {
+    const std::filesystem::path dir =
+        std::filesystem::path(MANTA_SOURCE_DIR) / "examples/ranger2000";
+    const auto def = aircraft::load_aircraft(dir / "aircraft.yaml");
+    const auto check_limits = [&](const Campaign& c) {
+        for (const auto& plan : c.controls) {
+            const auto& lim = plan.control == aero::Axis::elevator  ? def.limits.elevator
+                              : plan.control == aero::Axis::aileron ? def.limits.aileron
+                                                                    : def.limits.rudder;
+            EXPECT_NO_THROW(check_control_limits(plan, lim[0], lim[1])) << plan.where;
+        }
+    };
+
+    const Campaign half = read_campaign(dir / "campaign-euler-half.yaml");
+    EXPECT_EQ(half.source.type, SourceType::euler);
+    EXPECT_EQ(half.source.mesh_model, "half");
+    EXPECT_EQ(half.source.mesh_level, "coarse");
+    EXPECT_EQ(half.source.aircraft, dir / "aircraft.yaml");
+    ASSERT_EQ(half.static_table.beta.size(), 1U);  // a half model: beta 0 only
+    EXPECT_EQ(half.static_table.beta[0], 0.0);
+    ASSERT_EQ(half.controls.size(), 1U);
+    EXPECT_EQ(half.controls[0].control, aero::Axis::elevator);
+    EXPECT_FALSE(half.dynamic.has_value());  // rates need the whole aircraft
+    check_limits(half);
+
+    const Campaign full = read_campaign(dir / "campaign-euler.yaml");
+    EXPECT_EQ(full.source.type, SourceType::euler);
+    EXPECT_EQ(full.source.mesh_model, "full");
+    EXPECT_EQ(full.static_table.budget, 65);
+    EXPECT_DOUBLE_EQ(full.static_table.alpha.front(), core::deg(-6.0));
+    EXPECT_DOUBLE_EQ(full.static_table.alpha.back(), core::deg(14.0));
+    EXPECT_EQ(full.static_table.mach.back(), 0.6);
+    EXPECT_EQ(full.static_table.beta.size(), 5U);
+    ASSERT_EQ(full.controls.size(), 3U);
+    for (const auto& plan : full.controls) EXPECT_EQ(plan.samples, 12) << plan.where;
+    ASSERT_TRUE(full.dynamic.has_value());
+    EXPECT_EQ(full.dynamic->alpha.size() * full.dynamic->mach.size(), 6U);
+    check_limits(full);
 }
