@@ -3,6 +3,7 @@
 /// interpolation of the tables.csv entries), and the summary numbers of the comparison.
 
 #include "manta/report/compare.hpp"
+#include "detail/values.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -19,22 +20,13 @@ namespace manta::report {
 
 namespace fs = std::filesystem;
 
+using detail::distinct;
+using detail::near;
+
 namespace {
 
 constexpr double deg = 3.14159265358979323846 / 180.0;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-bool near(double a, double b) {
-    return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b));
-}
-
-std::vector<double> distinct(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    std::vector<double> out;
-    for (const double x : v)
-        if (out.empty() || !near(x, out.back())) out.push_back(x);
-    return out;
-}
 
 /// Index of `v` among the sorted distinct breakpoints `b` (they were built from the same values).
 std::size_t index_of(const std::vector<double>& b, double v) {

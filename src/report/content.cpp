@@ -10,9 +10,13 @@
 #include <map>
 #include <set>
 
+#include "detail/values.hpp"
 #include "manta/report/report.hpp"
 
 namespace manta::report {
+
+using detail::distinct;
+using detail::near;
 
 namespace {
 
@@ -22,22 +26,9 @@ std::string num(double v) {
     return fmt::format("{:g}", v);
 }
 
-bool near(double a, double b) {
-    return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b));
-}
-
 std::vector<double> scaled(const std::vector<double>& v, double f) {
     std::vector<double> out(v.size());
     std::transform(v.begin(), v.end(), out.begin(), [f](double x) { return x * f; });
-    return out;
-}
-
-/// Sorted distinct values.
-std::vector<double> distinct(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    std::vector<double> out;
-    for (const double x : v)
-        if (out.empty() || !near(x, out.back())) out.push_back(x);
     return out;
 }
 
