@@ -16,6 +16,7 @@
 ///   the Euler source reports) and a deflection with --motion.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -51,10 +52,20 @@ constexpr const char* config_text =
     "control_surfaces:\n"
     "  - {mode: elevator, marker: flap, hinge: [[0.75, 1, 0], [0.75, 2, 0]]}\n";
 
-/// The folder with flap.su2 and cfd.yaml (made once).
+/// The folder with flap.su2 and cfd.yaml (made once per process, named by the process id: CTest
+/// runs the cases of this file as processes at the same time; removed when the process ends).
+struct Scratch {
+    fs::path dir =
+        fs::temp_directory_path() / ("manta-euler-cfd-deflection-" + std::to_string(::getpid()));
+    ~Scratch() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+};
 const fs::path& folder() {
+    static const Scratch scratch;
     static const fs::path dir = [] {
-        const fs::path d = fs::temp_directory_path() / "manta-euler-cfd-deflection";
+        const fs::path d = scratch.dir;
         fs::remove_all(d);
         fs::create_directories(d);
         const mesh::Mesh m = test::flap_wing(2.0);

@@ -2,8 +2,8 @@
 /// The report in a real browser: headless chromium opens the report of the fixture run
 /// directory, the test checks that every plot was drawn (the page counts the plot elements that
 /// its script marked data-rendered) with no script or console error, and saves a screenshot in
-/// the build tree (tests/report/browser/report.png); the same for a page with --compare-tables
-/// (tests/report/browser/compare.png).
+/// the build tree (tests/report/browser/report/report.png); the same for a page with
+/// --compare-tables (tests/report/browser/compare/compare.png).
 
 #include <gtest/gtest.h>
 
@@ -38,10 +38,19 @@ std::string chromium_or_fail() {
     return c;
 }
 
-std::string flags() {
+/// Each test has its own folder and chromium profile under the work folder: CTest runs the two
+/// tests at the same time, and two chromium processes on one profile fail (exit status 21).
+fs::path folder(const std::string& tag) {
+    const fs::path f = work / tag;
+    fs::remove_all(f);
+    fs::create_directories(f);
+    return f;
+}
+
+std::string flags(const fs::path& dir) {
     return " --headless --no-sandbox --disable-gpu --hide-scrollbars --no-first-run"
            " --user-data-dir=" +
-           (work / "profile").string();
+           (dir / "profile").string();
 }
 
 const char* const interaction_script = R"JS(<script>
@@ -81,13 +90,14 @@ int attr(const std::string& dom, const std::string& name) {
 /// error, the interactions work, no console message. `tag` names the files in the work folder.
 void check_page(const std::string& chromium, const fs::path& html, int plots,
                 const std::string& tag) {
+    const fs::path dir = html.parent_path();
     std::string page = manta::core::read_file(html);
     page.insert(page.rfind("</body>"), interaction_script);
-    const fs::path probed = work / (tag + "_probed.html");
+    const fs::path probed = dir / (tag + "_probed.html");
     manta::core::write_file_atomic(probed, page);
 
-    const fs::path dom = work / (tag + "_dom.html"), log = work / (tag + "_console.txt");
-    const int rc = shell("'" + chromium + "'" + flags() +
+    const fs::path dom = dir / (tag + "_dom.html"), log = dir / (tag + "_console.txt");
+    const int rc = shell("'" + chromium + "'" + flags(dir) +
                          " --enable-logging=stderr --v=0 --dump-dom 'file://" + probed.string() +
                          "' > '" + dom.string() + "' 2> '" + log.string() + "'");
     ASSERT_EQ(rc, 0) << "chromium --dump-dom failed; see " << log;
@@ -109,8 +119,8 @@ void check_page(const std::string& chromium, const fs::path& html, int plots,
         ++n_console;
     EXPECT_EQ(n_console, 0u) << console;
 
-    const fs::path shot = work / (tag + ".png");
-    ASSERT_EQ(shell("'" + chromium + "'" + flags() + " --window-size=1280,2000 --screenshot='" +
+    const fs::path shot = dir / (tag + ".png");
+    ASSERT_EQ(shell("'" + chromium + "'" + flags(dir) + " --window-size=1280,2000 --screenshot='" +
                     shot.string() + "' 'file://" + html.string() + "' > /dev/null 2>&1"),
               0);
     ASSERT_TRUE(fs::exists(shot));
@@ -122,11 +132,9 @@ void check_page(const std::string& chromium, const fs::path& html, int plots,
 TEST(Browser, EveryPlotRendersWithoutErrorsAndAScreenshotIsSaved) {
     const std::string chromium = chromium_or_fail();
     if (chromium.empty()) return;
-    fs::remove_all(work);
-    fs::create_directories(work);
     ReportOptions o;
     o.run_dir = fixture;
-    o.html = work / "report.html";
+    o.html = folder("report") / "report.html";
     (void)make_report(o);
     // Static, 3 controls, dynamic, histories, flight path, replay x3.
     check_page(chromium, o.html, 10, "report");
@@ -135,10 +143,9 @@ TEST(Browser, EveryPlotRendersWithoutErrorsAndAScreenshotIsSaved) {
 TEST(Browser, ComparisonPageRendersEveryPlot) {
     const std::string chromium = chromium_or_fail();
     if (chromium.empty()) return;
-    fs::create_directories(work);
     ReportOptions o;
     o.run_dir = fixture;
-    o.html = work / "compare.html";
+    o.html = folder("compare") / "compare.html";
     o.compare_tables = manta::report::test_data::scaled_copy("browser", {"CL", "sigma_CL"}, 1.1);
     (void)make_report(o);
     // The 10 plots of the run, each static and control figure with both tables, and the
