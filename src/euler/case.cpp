@@ -1025,7 +1025,8 @@ CaseResult CfdCase::Impl::run_unsteady(const Progress& progress) {
                       {"span", setup.reference.span},
                       {"moment_point",
                        {setup.reference.moment_point.x(), setup.reference.moment_point.y(),
-                        setup.reference.moment_point.z()}}};
+                        setup.reference.moment_point.z()}},
+                      {"half_model", setup.reference.half_model}};
     j["dt"] = dt;
     j["dt_solver"] = cfg.unsteady.dt;
     j["order"] = cfg.unsteady.order;
@@ -1176,7 +1177,8 @@ CaseResult CfdCase::run(const Progress& progress) {
                       {"span", setup.reference.span},
                       {"moment_point",
                        {setup.reference.moment_point.x(), setup.reference.moment_point.y(),
-                        setup.reference.moment_point.z()}}};
+                        setup.reference.moment_point.z()}},
+                      {"half_model", setup.reference.half_model}};
     j["deflections_deg"] = {{"elevator", c.deflection[0] / deg},
                             {"aileron", c.deflection[1] / deg},
                             {"rudder", c.deflection[2] / deg}};

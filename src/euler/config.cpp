@@ -62,6 +62,7 @@ CfdConfig read(const ConfigNode& root) {
             const auto p = r.vec3("moment_point", NumberSpec::any("m"));
             c.reference.moment_point = Vec3(p[0], p[1], p[2]);
         }
+        c.reference.half_model = r.boolean_or("half_model", false);
         r.finish();
     }
     if (auto n = top.optional_child("numerics")) {
@@ -207,6 +208,8 @@ void apply_companion(CfdConfig& config, const mesh::Companion& companion,
         config.reference.span = companion.reference.span;
         config.reference.moment_point = companion.reference.moment_point;
     }
+    // The mesh is a half model whatever reference values the configuration gives.
+    if (companion.model == "half") config.reference.half_model = true;
     if (!config.control_surfaces_given) {
         config.control_surfaces.clear();
         for (std::size_t i = 0; i < companion.control_surfaces.size(); ++i) {

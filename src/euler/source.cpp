@@ -54,7 +54,7 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label,
     fingerprint_ = fmt::format(
         "euler {} mesh={} [{}] roles={} order={} flux={} wall={} low_mach={} gradient={} "
         "limiter={} K={} fix={} "
-        "gamma={} drop={} ref=({},{},{},{},{},{})",
+        "gamma={} drop={} ref=({},{},{},{},{},{}){}",
         core::version(), label, mesh_fingerprint(mesh_, ids, mesh_.n_nodes(), comm), roles, o.order,
         o.flux.scheme == FluxScheme::roe ? std::string("roe")
         : o.flux.scheme == FluxScheme::hllc
@@ -63,7 +63,8 @@ EulerSource::EulerSource(mesh::Mesh mesh, CaseSetup setup, std::string label,
         o.strong_walls() ? "strong" : "weak", o.flux.low_mach_fix,
         o.gradient == GradientMethod::least_squares ? "lsq" : "gg", o.limiter, o.venkatakrishnan_k,
         o.flux.entropy_fix, setup_.flow.gamma, s.residual_drop, r.area, r.chord, r.span,
-        r.moment_point.x(), r.moment_point.y(), r.moment_point.z());
+        r.moment_point.x(), r.moment_point.y(), r.moment_point.z(),
+        r.half_model ? " half-model" : "");
     // Rotation rates in the rotating frame (rotating_frame.hpp) and deflections by the control
     // surfaces below: samples of sources before them (which refused both) carry other text.
     fingerprint_ += " rates=rotating-frame-1 surfaces=[";

@@ -48,6 +48,13 @@ struct ReferenceValues {
     double chord = 1.0;          ///< length of the pitching moment [m]
     double span = 1.0;           ///< length of the rolling and yawing moments [m]
     Vec3 moment_point{0, 0, 0};  ///< moment reference point in the mesh axes [m]
+    /// The mesh is the half (y >= 0) of an aircraft symmetric about the plane y = 0, on a
+    /// symmetry plane there (`manta mesh --model half`): the coefficients are the whole
+    /// aircraft's, the half and its mirror image together. The side force and the rolling and
+    /// yawing moments of the two halves cancel (CFy = CY = CMx = CMz = 0); `area` is half the
+    /// aircraft's, so the half's lift, drag and pitching moment over q * area are the whole
+    /// aircraft's. Needs the moment point on the plane and zero sideslip.
+    bool half_model = false;
 };
 
 /// Force and moment coefficients on the walls, pressure only (p - p_inf).
