@@ -204,11 +204,22 @@ aero::SourceResult LaunchedEulerSource::evaluate(const aero::AeroQuery<double>& 
     if (s.is_null() || !s.value("converged", false)) {
         // The folder's own restart file, when a killed job left one, wins over --initial
         // (manta cfd resumes from it).
-        const std::vector<std::string> cmd = command(q, nearest_done(q));
+        const std::filesystem::path initial = nearest_done(q);
+        std::vector<std::string> cmd = command(q, initial);
         std::error_code ec;
         std::filesystem::create_directories(folder, ec);
         const std::filesystem::path log = folder / "job.log";
-        const core::ProcessResult r = core::run_process(cmd, log, options_.environment);
+        core::ProcessResult r = core::run_process(cmd, log, options_.environment);
+        if ((r.exit_code != 0 || !read_summary(folder).value("converged", false)) &&
+            !initial.empty()) {
+            // A start from another sample's solution can fail where the free stream does not
+            // (EulerSource does the same): the job again from the free stream (--restart: not
+            // from the failed run's restart file), the warm job's log kept as job_warm.log.
+            std::filesystem::rename(log, folder / "job_warm.log", ec);
+            cmd = command(q, {});
+            cmd.push_back("--restart");
+            r = core::run_process(cmd, log, options_.environment);
+        }
         if (r.exit_code != 0)
             throw ConvergenceError(fmt::format("{}: the job exited with status {} (log {}: {})",
                                                where, r.exit_code, log.string(), r.last_line));

@@ -180,7 +180,47 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
             warm = true;
         }
     }
-    const SolveOutcome oc = solver.solve();
+    SolveOutcome oc;
+    std::string warm_failure;
+    try {
+        oc = solver.solve();
+        if (!oc.converged && warm) warm_failure = oc.reason;
+    } catch (const ConvergenceError& e) {
+        if (!warm) throw;
+        warm_failure = e.what();
+    }
+    if (!warm_failure.empty()) {
+        // A start from another condition's solution can fail where the free stream does not
+        // (the coarse Ranger at M 0.3, alpha 2 deg, started from M 0.2, alpha 6 deg, diverged
+        // with six back-offs): solve again from the free stream, and say both when that fails.
+        SteadySolver cold(domain, comm_, setup);
+        if (rotates(rates))
+            cold.set_rotating_frame(body_rate_frame(rates, q.mach, setup_.reference.span,
+                                                    setup_.reference.chord,
+                                                    setup_.reference.moment_point));
+        try {
+            oc = cold.solve();
+        } catch (const ConvergenceError& e) {
+            throw ConvergenceError(
+                fmt::format("{} (from the free stream; warm-started: {})", e.what(), warm_failure));
+        }
+        if (!oc.converged)
+            oc.reason += " (from the free stream; warm-started: " + warm_failure + ")";
+        warm = false;
+        {
+            std::lock_guard lock(mutex_);
+            ++stats_.cold_retries;
+        }
+        return finish(q, rates, deflection, oc, cold, warm);  // the cold solver's state
+    }
+    return finish(q, rates, deflection, oc, solver, warm);
+}
+
+aero::SourceResult EulerSource::finish(const aero::AeroQuery<double>& q,
+                                       const std::array<double, 3>& rates,
+                                       const std::array<double, 3>& deflection,
+                                       const SolveOutcome& oc, const SteadySolver& solver,
+                                       bool warm) const {
     if (!oc.converged)
         throw ConvergenceError(fmt::format(
             "euler source at M {:g}, alpha {:.4g} deg, beta {:.4g} deg, p_hat {:g}, q_hat {:g}, "

@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -35,6 +36,7 @@
 
 #include "flap_meshes.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
 #include "manta/euler/case.hpp"
 #include "manta/euler/launched_source.hpp"
 #include "manta/euler/source.hpp"
@@ -203,6 +205,34 @@ TEST(LaunchedEulerSource, ANewSourceTakesTheConvergedSamplesAndTheirNearest) {
     EXPECT_EQ(again.nearest_done(query(4.5, 0.018)),
               again.sample_folder(queries()[3]) / "restart.bin");
     EXPECT_EQ(again.nearest_done(query(0.5)), again.sample_folder(queries()[0]) / "restart.bin");
+}
+
+// A job warm-started from another sample that fails is run again from the free stream (as
+// EulerSource does): the nearest sample's restart file is cut short after it converged, so the
+// next sample's job, started with --initial from it, fails; the second job (--restart, no
+// --initial) converges and equals the in-process solution from the free stream, and the failed
+// job's log is kept as job_warm.log.
+TEST(LaunchedEulerSource, AFailedWarmJobRunsAgainFromTheFreeStream) {
+    const fs::path mesh = folder() / "flap.su2", config = folder() / "cfd.yaml";
+    const euler::LaunchedEulerSource jobs(mesh, config, options("cold_retry"));
+    aero::AeroQuery<double> first = query(), second = query();
+    second.alpha = 3.0 * deg;
+    (void)jobs.evaluate(first, {});
+    const fs::path restart = jobs.sample_folder(first) / "restart.bin";
+    ASSERT_TRUE(fs::exists(restart));
+    fs::resize_file(restart, fs::file_size(restart) / 2);
+    const aero::SourceResult a = jobs.evaluate(second, {});
+    const auto cold = euler::EulerSource::from_files(mesh, config);
+    const aero::SourceResult b = cold->evaluate(second, {});
+    EXPECT_LT(max_difference(a, b), 1e-9);
+    const fs::path f = jobs.sample_folder(second);
+    ASSERT_TRUE(fs::exists(f / "job_warm.log"));
+    const std::string warm_log = manta::core::read_file(f / "job_warm.log");
+    EXPECT_NE(warm_log.find("the restart file is truncated"), std::string::npos)
+        << warm_log.substr(0, 400);
+    const nlohmann::json s = summary(f);
+    EXPECT_TRUE(s["converged"].get<bool>());
+    EXPECT_EQ(s["iterations"].get<int>(), cold->stats().iterations);
 }
 
 TEST(LaunchedEulerSource, RefusesBeforeAJobOrNamesTheJobsError) {

@@ -38,7 +38,8 @@ namespace manta::euler {
 struct EulerSourceStats {
     int evaluations = 0;
     int warm_starts = 0;
-    int iterations = 0;  ///< summed over the evaluations
+    int iterations = 0;    ///< summed over the evaluations
+    int cold_retries = 0;  ///< warm starts that failed and were solved again from free stream
 };
 
 /// How a run along a motion starts (`EulerSource::set_unsteady_start`).
@@ -128,6 +129,11 @@ public:
 
 private:
     class Run;  // unsteady_source.cpp
+    /// `evaluate`'s end: the outcome's coefficients (ConvergenceError naming the query if it did
+    /// not converge), the statistics and the cache updated with `solver`'s state.
+    aero::SourceResult finish(const aero::AeroQuery<double>& q, const std::array<double, 3>& rates,
+                              const std::array<double, 3>& deflection, const SolveOutcome& oc,
+                              const SteadySolver& solver, bool warm) const;
     struct Cached {
         double mach, alpha, beta;
         std::array<double, 3> rates;       ///< p_hat, q_hat, r_hat
