@@ -50,21 +50,6 @@ struct ReplayArgs {
     bool restart = false, keep_checkpoint = false, no_viscous = false, json = false;
 };
 
-std::shared_ptr<const aero::AeroDatabase> load_tables(const std::string& tables,
-                                                      const aircraft::AircraftDefinition& def) {
-    if (tables.empty()) return def.aero;
-    fs::path p(tables);
-    if (fs::is_directory(p)) {
-        p /= "database.yaml";
-        if (!fs::exists(p))
-            throw InputError(fmt::format(
-                "--tables {}: a folder without database.yaml; expected a database file or a "
-                "`manta tables --out` folder",
-                tables));
-    }
-    return std::make_shared<const aero::AeroDatabase>(aero::AeroDatabase::read(p));
-}
-
 int run_replay_command(const ReplayArgs& a) {
     const bool euler = a.source == "euler";
     if (euler && a.mesh.empty())

@@ -162,7 +162,7 @@ int run_single(const SimulateArgs& a) {
     core::prepare_output_file(a.out, "--out");           // and an unwritable --out too
 
     const auto def = aircraft::load_aircraft(a.ac.aircraft);
-    const flightdyn::FlightModel model = def.flight_model(a.ac.mass_case);
+    const flightdyn::FlightModel model = flight_model_of(def, a.ac);
     flightdyn::TrimTarget target;
     target.airspeed = a.speed;
     target.altitude = a.altitude;
@@ -328,7 +328,7 @@ int run_ensemble(const SimulateArgs& a) {
         flightdyn::read_cases(a.cases);  // errors before the aircraft is read
 
     const auto def = aircraft::load_aircraft(a.ac.aircraft);
-    const flightdyn::FlightModel model = def.flight_model(a.ac.mass_case);
+    const flightdyn::FlightModel model = flight_model_of(def, a.ac);
     opt.aircraft_name = def.name;
     opt.mass_case = model.mass.name;
     std::vector<flightdyn::TrimResult> trims;

@@ -89,7 +89,7 @@ void add_trim(CLI::App& app, Action& action) {
     cmd->callback([a, &action] {
         action = [a]() -> int {
             const auto def = aircraft::load_aircraft(a->ac.aircraft);
-            const flightdyn::FlightModel model = def.flight_model(a->ac.mass_case);
+            const flightdyn::FlightModel model = flight_model_of(def, a->ac);
             flightdyn::TrimTarget target;
             target.airspeed = a->fc.speed;
             target.altitude = a->fc.altitude;

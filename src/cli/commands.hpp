@@ -6,10 +6,12 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
+#include "manta/aircraft/aircraft.hpp"
 #include "manta/geometry/aircraft_geometry.hpp"
 #include "manta/vlm/model.hpp"
 
@@ -39,9 +41,20 @@ void add_mesh(CLI::App& app, Action& action);
 struct AircraftOptions {
     std::string aircraft;   ///< --aircraft FILE (required, must exist)
     std::string mass_case;  ///< --mass-case NAME ("" = the file's default case)
+    std::string tables;     ///< --tables FILE|DIR ("" = the aircraft file's aero model)
 };
-/// Add --aircraft and --mass-case to `cmd`.
+/// Add --aircraft, --mass-case and --tables to `cmd`.
 void add_aircraft_options(CLI::App* cmd, AircraftOptions& o);
+
+/// The aero database of `--tables`: a database file, or a `manta tables --out` folder (its
+/// database.yaml); the aircraft file's own model when `tables` is empty. InputError naming the
+/// option for a folder without a database.
+[[nodiscard]] std::shared_ptr<const aero::AeroDatabase> load_tables(
+    const std::string& tables, const aircraft::AircraftDefinition& def);
+/// The flight model of `def` in the mass case of `o`, with the database of `o.tables` in place of
+/// the aircraft file's aero model where given.
+[[nodiscard]] flightdyn::FlightModel flight_model_of(const aircraft::AircraftDefinition& def,
+                                                     const AircraftOptions& o);
 
 /// A level-flight condition given on the command line.
 struct FlightCondition {

@@ -1,14 +1,17 @@
 /// `manta`: command-line entry point. Exit codes: 0 success, 2 bad input (configuration, input
 /// files, command-line values), 1 failed computation (no convergence, numerical breakdown).
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 
 #include "checks.hpp"
 #include "commands.hpp"
+#include "manta/aero/database.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/memory.hpp"
 #include "manta/core/text.hpp"
@@ -26,6 +29,32 @@ void add_aircraft_options(CLI::App* cmd, AircraftOptions& o) {
         ->check(CLI::ExistingFile);
     cmd->add_option("--mass-case", o.mass_case,
                     "Mass case of the aircraft file (default: its default case)");
+    cmd->add_option("--tables", o.tables,
+                    "Aero database replacing the aircraft file's (a database.yaml or a `manta "
+                    "tables --out` folder)")
+        ->check(CLI::ExistingPath);
+}
+
+std::shared_ptr<const aero::AeroDatabase> load_tables(const std::string& tables,
+                                                      const aircraft::AircraftDefinition& def) {
+    if (tables.empty()) return def.aero;
+    std::filesystem::path p(tables);
+    if (std::filesystem::is_directory(p)) {
+        p /= "database.yaml";
+        if (!std::filesystem::exists(p))
+            throw InputError(fmt::format(
+                "--tables {}: a folder without database.yaml; expected a database file or a "
+                "`manta tables --out` folder",
+                tables));
+    }
+    return std::make_shared<const aero::AeroDatabase>(aero::AeroDatabase::read(p));
+}
+
+flightdyn::FlightModel flight_model_of(const aircraft::AircraftDefinition& def,
+                                       const AircraftOptions& o) {
+    flightdyn::FlightModel model = def.flight_model(o.mass_case);
+    if (!o.tables.empty()) model.aero = load_tables(o.tables, def);
+    return model;
 }
 
 void add_required_flight_condition(CLI::App* cmd, FlightCondition& c) {

@@ -247,6 +247,17 @@ for f in report.html run.json tables/database.yaml fly/summary.json manoeuvres/l
     if [ -s "$work/demo/$f" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: demo output $f missing"; fi
 done
 contains "demo run.json complete" "$work/demo/run.json" '"status": "complete"'
+# trim, modes and simulate on the demo's generated tables instead of the aircraft file's model
+check "trim on tables" 0 "$manta" trim --aircraft "$ranger" --tables "$work/demo/tables" --speed 150 --altitude 3000 --json
+json_ok "trim on tables json"
+cp "$work/out.txt" "$work/trim_tables.json"
+check "trim on the aircraft's model" 0 "$manta" trim --aircraft "$ranger" --speed 150 --altitude 3000 --json
+if python3 -c 'import json,sys; a=json.load(open(sys.argv[1])); b=json.load(open(sys.argv[2])); sys.exit(0 if abs(a["alpha"] - b["alpha"]) > 1e-4 else 1)' "$work/trim_tables.json" "$work/out.txt"; then
+    pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: trim --tables gave the aircraft model's alpha"; fi
+check "modes on tables" 0 "$manta" modes --aircraft "$ranger" --tables "$work/demo/tables/database.yaml" --speed 150 --altitude 3000 --json
+check "simulate on tables" 0 "$manta" simulate --aircraft "$ranger" --tables "$work/demo/tables" --inputs "$work/inputs.csv" --duration 2 --out "$work/traj_tables.csv"
+check "trim tables folder without database" 2 "$manta" trim --aircraft "$ranger" --tables "$work/demo/fly" --speed 150 --altitude 3000
+contains "tables folder message" "$work/err.txt" 'a folder without database.yaml'
 check "demo resumed" 0 "$manta" demo --quick --out "$work/demo" --jobs 2
 contains "demo keeps finished stages" "$work/out.txt" 'optimise level_turn: already done'
 contains "demo keeps the replay" "$work/out.txt" 'replay level_turn: already done'
