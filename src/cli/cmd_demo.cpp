@@ -126,10 +126,11 @@ struct EulerCosts {
     double step_s;      ///< one physical step of the Euler replay
     double optimise_s;  ///< one manoeuvre optimisation on the tables
 };
-// The coarse full model (138 951 nodes, docs/meshgen.md): 127 s of meshing; a cold solution 12
-// min, warm ones about a third (docs/tables.md); a replay step of about 10 inner iterations at
-// 22 us per inner iteration and node (docs/replay.md, "Cost") is 31 s.
-constexpr EulerCosts euler_costs_full{130.0, 240.0, 480.0, 31.0, 150.0};
+// The coarse full model (138 951 nodes, docs/meshgen.md): 65-127 s of meshing; a cold solution
+// 12 min, warm ones about a third (docs/tables.md); a replay step 61 s of CPU (the first 10 steps
+// of 0.01 s of the level turn from the free stream with the default unsteady settings, load 4-5:
+// an upper bound, the start transient takes more inner iterations than later steps).
+constexpr EulerCosts euler_costs_full{130.0, 240.0, 480.0, 60.0, 150.0};
 // The quick mesh (size factor 8, 17 056 nodes), first order to 3 orders: 19 s of meshing, 26
 // solutions in 100 s with two jobs at load 4-5, 0.85 s per replay step of at most 10 inner
 // iterations.
