@@ -3,8 +3,10 @@
 /// tables`), the tables flown (trim, modes, response to control doublets), the paper's three
 /// time-optimal manoeuvres on the tables (`manta optimise`), each replayed through the unsteady
 /// vortex lattice and compared with the tables (`manta replay`), and the HTML report (`manta
-/// report`). Stages run as child processes of this program, several at once, each with its log;
-/// a run folder that exists is resumed (finished stages are kept).
+/// report`). With `--fidelity euler` the campaign meshes the aircraft and fills the tables from
+/// Euler solutions, and the replays are time-accurate Euler on that mesh. Stages run as child
+/// processes of this program, several at once, each with its log; a run folder that exists is
+/// resumed (finished stages are kept).
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -13,6 +15,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <regex>
+#include <sstream>
 #include <thread>
 
 #include "checks.hpp"
@@ -28,6 +32,9 @@
 #include "manta/flightdyn/modes.hpp"
 #include "manta/flightdyn/simulate.hpp"
 #include "manta/flightdyn/trim.hpp"
+#include "manta/manoeuvres/manoeuvre.hpp"
+#include "manta/replay/trajectory.hpp"
+#include "manta/tables/campaign.hpp"
 #include "subprocess.hpp"
 #include "svg_plot.hpp"
 
@@ -109,6 +116,87 @@ struct Markers {
         fs::remove_all(dir, ec);
     }
 };
+
+// --fidelity euler: what the Euler pipeline costs, measured on the 2-core development sandbox
+// (docs/demo.md, "Timings"), for the estimate the demo prints before it starts.
+struct EulerCosts {
+    double mesh_s;      ///< meshing the aircraft
+    double solution_s;  ///< one steady Euler solution (warm-started from its neighbour) per job
+    double first_s;     ///< the extra of the first, cold solution
+    double step_s;      ///< one physical step of the Euler replay
+    double optimise_s;  ///< one manoeuvre optimisation on the tables
+};
+// The coarse full model (138 951 nodes, docs/meshgen.md): 65-127 s of meshing; a cold solution
+// 12 min, warm ones about a third (docs/tables.md); a replay step 61 s of CPU (the first 10 steps
+// of 0.01 s of the level turn from the free stream with the default unsteady settings, load 4-5:
+// an upper bound, the start transient takes more inner iterations than later steps).
+constexpr EulerCosts euler_costs_full{130.0, 240.0, 480.0, 60.0, 150.0};
+// The quick mesh (size factor 8, 17 056 nodes), first order to 3 orders: 19 s of meshing, 26
+// solutions in 100 s with two jobs at load 4-5, 0.85 s per replay step of at most 10 inner
+// iterations.
+constexpr EulerCosts euler_costs_quick{20.0, 7.7, 0.0, 0.85, 10.0};
+// The quick demo flies the level turn on tables whose drag is mostly numerical (first order on
+// the size-factor-8 mesh: CD 0.18 at alpha 0 against 0.027 on the coarse mesh at second order):
+// with the Ranger's engine it cannot even trim (throttle 2.78 at 150 m/s, 3000 m), so its thrust
+// is scaled by the smallest whole factor that trims it (throttle 0.93 at the level turn's mass,
+// 0.96 at the maximum take-off mass).
+constexpr double euler_quick_thrust_factor = 3.0;
+// The quick demo replays the first seconds of the level turn at a fixed time step.
+constexpr double euler_quick_replay_s = 2.0;
+constexpr double euler_quick_replay_dt = 0.05;
+
+std::string duration_words(double s) {
+    if (s < 120.0) return fmt::format("{:.0f} s", s);
+    if (s < 2.0 * 3600.0) return fmt::format("{:.0f} min", s / 60.0);
+    if (s < 48.0 * 3600.0) return fmt::format("{:.1f} h", s / 3600.0);
+    return fmt::format("{:.1f} days ({:.0f} h)", s / 86400.0, s / 3600.0);
+}
+
+// Euler solutions of a campaign: the static budget, every control's deflected samples and six
+// rotating-frame solutions per dynamic point.
+int campaign_solutions(const tables::Campaign& c) {
+    int n = c.static_table.budget;
+    for (const auto& cp : c.controls) n += cp.samples;
+    if (c.dynamic) {
+        const auto na =
+            c.dynamic->alpha.empty() ? c.static_table.alpha.size() : c.dynamic->alpha.size();
+        const auto nm =
+            c.dynamic->mach.empty() ? c.static_table.mach.size() : c.dynamic->mach.size();
+        n += static_cast<int>(6 * na * nm);
+    }
+    return n;
+}
+
+// A child's last line without the program's "manta: error: " prefix.
+std::string strip_error_prefix(const std::string& line) {
+    const std::string prefix = "manta: error: ";
+    return line.starts_with(prefix) ? line.substr(prefix.size()) : line;
+}
+
+// Wall time of `total` seconds of work split over `parallel` equal children.
+double over(double total, int parallel) {
+    return total / std::max(1, parallel);
+}
+
+// The aircraft text with its engine's `static_thrust:` multiplied by `factor` (the quick Euler
+// demo); unchanged, and `scaled` false, when it has none.
+std::string scale_thrust(const std::string& text, double factor, bool& scaled) {
+    static const std::regex line(R"(^(\s*static_thrust:\s*)([-+0-9.eE]+)(.*)$)");
+    std::istringstream in(text);
+    std::string out, l;
+    scaled = false;
+    while (std::getline(in, l)) {
+        std::smatch m;
+        if (!scaled && std::regex_match(l, m, line)) {
+            l = fmt::format("{}{}  # x {} for the quick Euler demo (docs/demo.md); was {}{}",
+                            m[1].str(), std::stod(m[2].str()) * factor, factor, m[2].str(),
+                            m[3].str());
+            scaled = true;
+        }
+        out += l + "\n";
+    }
+    return out;
+}
 
 // Stage 3: the generated tables flown: trim, modes, response to control doublets (in process).
 nlohmann::json fly_tables(const aircraft::AircraftDefinition& ac, const fs::path& database,
@@ -227,9 +315,10 @@ nlohmann::json fly_tables(const aircraft::AircraftDefinition& ac, const fs::path
 void add_demo(CLI::App& app, Action& action) {
     auto* cmd = app.add_subcommand(
         "demo",
-        "Run the whole pipeline on the Ranger 2000 (inputs compiled in): VLM tables by sampling "
-        "and Kriging, the tables flown, the paper's three time-optimal manoeuvres, their UVLM "
-        "replay against the tables, and the HTML report (docs/demo.md)");
+        "Run the whole pipeline on the Ranger 2000 (inputs compiled in): tables by sampling and "
+        "Kriging (vortex lattice, or Euler CFD on a generated mesh with --fidelity euler), the "
+        "tables flown, the paper's three time-optimal manoeuvres, their replay through the same "
+        "source against the tables, and the HTML report (docs/demo.md)");
     struct Opts {
         std::string out = "out/demo";
         std::string aircraft;
@@ -250,8 +339,9 @@ void add_demo(CLI::App& app, Action& action) {
                     "manoeuvres are the Ranger's)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--fidelity", o->fidelity,
-                    "Aerodynamic source of the tables and the replay: vlm (vortex lattice) or "
-                    "euler (Euler CFD on a coarse mesh)")
+                    "Aerodynamic source of the tables and the replay: vlm (vortex lattice, "
+                    "minutes) or euler (Euler CFD on the coarse full-model mesh the campaign "
+                    "generates; days on 2 cores, the estimate is printed at the start)")
         ->capture_default_str();
     cmd->add_option("--manoeuvres", o->manoeuvres,
                     "Manoeuvres: immelmann, lazy_eight, barrel_roll, level_turn (compiled in) or "
@@ -260,11 +350,13 @@ void add_demo(CLI::App& app, Action& action) {
     cmd->add_option("--jobs", o->jobs, "Stages run at once (default: one per hardware thread)")
         ->check(integer_in(0, 1024));
     cmd->add_flag("--quick", o->quick,
-                  "Smoke run: the level turn instead of the paper's manoeuvres (under a minute)");
+                  "Smoke run: the level turn instead of the paper's manoeuvres (vlm: about a "
+                  "minute; euler: a tiny mesh, 26 Euler solutions, 2 s of the turn replayed, "
+                  "about 3 minutes on 2 cores)");
     cmd->add_flag("--restart", o->restart, "Discard the run folder's results and start again");
     cmd->add_option("--replay-dt", o->replay_dt,
-                    "Time step of the replays [s] (default: chosen "
-                    "by manta replay from the manoeuvre)")
+                    "Time step of the replays [s] (default: chosen by manta replay from the "
+                    "manoeuvre; 0.05 with --fidelity euler --quick)")
         ->check(real_in(0.0, 1.0, "s"));
     cmd->add_flag("--json", o->json, "Print the run summary (run.json) as one JSON object");
     cmd->callback([o, &action] {
@@ -282,11 +374,7 @@ void add_demo(CLI::App& app, Action& action) {
                 throw InputError(fmt::format(
                     "--fidelity: '{}' is not a fidelity; expected vlm or euler", o->fidelity));
             }
-            if (o->fidelity == "euler") {
-                throw InputError(
-                    "--fidelity euler: this version of MANTA has no Euler CFD source that can "
-                    "generate tables and replay manoeuvres yet; use --fidelity vlm");
-            }
+            const bool euler = o->fidelity == "euler";
             std::vector<std::string> names = o->manoeuvres;
             if (names.empty()) {
                 names = o->quick
@@ -313,23 +401,54 @@ void add_demo(CLI::App& app, Action& action) {
             // has the files (and can rerun any stage by hand with the commands in the logs).
             const auto t_inputs = Clock::now();
             aircraft::AircraftDefinition ac;
-            std::string campaign(embedded::ranger_campaign);
-            if (o->aircraft.empty()) {
-                core::write_file_atomic(inputs / "aircraft.yaml", embedded::ranger_aircraft);
+            std::string campaign(!euler     ? embedded::ranger_campaign
+                                 : o->quick ? embedded::ranger_campaign_euler_quick
+                                            : embedded::ranger_campaign_euler);
+            // The aircraft file the campaign reads (an Euler campaign meshes it: the mesh is
+            // named after it).
+            fs::path campaign_aircraft = inputs / "aircraft.yaml";
+            // The quick Euler demo's aircraft: the engine's thrust scaled
+            // (euler_quick_thrust_factor).
+            const bool scaled_engine = euler && o->quick;
+            bool thrust_scaled = false;
+            // A given aircraft file is read as it is first, so that its errors name it.
+            if (!o->aircraft.empty()) ac = aircraft::load_aircraft(o->aircraft);
+            const std::string aircraft_text = o->aircraft.empty()
+                                                  ? std::string(embedded::ranger_aircraft)
+                                                  : core::read_file(o->aircraft);
+            core::write_file_atomic(
+                inputs / "aircraft.yaml",
+                scaled_engine
+                    ? scale_thrust(aircraft_text, euler_quick_thrust_factor, thrust_scaled)
+                    : aircraft_text);
+            if (o->aircraft.empty() || scaled_engine)
                 ac = aircraft::load_aircraft(inputs / "aircraft.yaml");
-            } else {
-                ac = aircraft::load_aircraft(o->aircraft);
-                core::write_file_atomic(inputs / "aircraft.yaml", core::read_file(o->aircraft));
+            if (!o->aircraft.empty() && !scaled_engine) {
                 const std::string key = "  aircraft: aircraft.yaml";
                 const auto at = campaign.find(key);
                 if (at != std::string::npos) {
+                    campaign_aircraft = fs::absolute(o->aircraft);
                     campaign.replace(at, key.size(),
-                                     "  aircraft: \"" + fs::absolute(o->aircraft).string() + "\"");
+                                     "  aircraft: \"" + campaign_aircraft.string() + "\"");
                 }
             }
             core::write_file_atomic(out / "aircraft.yaml",
                                     core::read_file(inputs / "aircraft.yaml"));
             core::write_file_atomic(inputs / "campaign.yaml", campaign);
+            // The Euler numerics beside the campaign (its `config:` names them), and the one the
+            // replays use.
+            fs::path cfd_config;
+            if (euler) {
+                if (!embedded::ranger_cfd_euler.empty())
+                    core::write_file_atomic(inputs / "cfd-euler.yaml", embedded::ranger_cfd_euler);
+                core::write_file_atomic(inputs / "cfd-euler-quick.yaml",
+                                        embedded::ranger_cfd_euler_quick);
+                if (o->quick) {
+                    cfd_config = inputs / "cfd-euler-quick.yaml";
+                } else if (!embedded::ranger_cfd_euler.empty()) {
+                    cfd_config = inputs / "cfd-euler.yaml";
+                }
+            }
             std::vector<std::pair<std::string, fs::path>> manoeuvre_files;
             for (const auto& n : names) {
                 const auto text = embedded_manoeuvre(n);
@@ -357,6 +476,63 @@ void add_demo(CLI::App& app, Action& action) {
                             ac.name, o->aircraft.empty() ? "compiled in" : o->aircraft,
                             manoeuvre_files.size(), inputs.string(), jobs));
 
+            // --fidelity euler: the campaign, the mesh it makes, and what it all costs.
+            const fs::path mesh_file =
+                out / "tables" / "mesh" /
+                fmt::format("{}_full_coarse.su2", campaign_aircraft.stem().string());
+            const double replay_until = euler && o->quick ? euler_quick_replay_s : 0.0;
+            const double replay_dt = o->replay_dt > 0.0  ? o->replay_dt
+                                     : euler && o->quick ? euler_quick_replay_dt
+                                                         : 0.0;
+            nlohmann::json euler_json = nullptr;
+            if (euler) {
+                const EulerCosts& k = o->quick ? euler_costs_quick : euler_costs_full;
+                const tables::Campaign c = tables::read_campaign(inputs / "campaign.yaml");
+                const int n_solutions = campaign_solutions(c);
+                long steps = 0;
+                for (const auto& [name, file] : manoeuvre_files) {
+                    const auto spec = manoeuvres::load_manoeuvre(file);
+                    // One reference chord per step at the entry speed (the automatic step).
+                    const double dt =
+                        replay_dt > 0.0 ? replay_dt : ac.reference.chord / spec.entry_speed;
+                    const double flight = replay_until > 0.0 ? replay_until : spec.duration_guess;
+                    steps += static_cast<long>(std::ceil(flight / dt));
+                }
+                const int n_man = static_cast<int>(manoeuvre_files.size());
+                const double tables_s =
+                    k.mesh_s + k.first_s + over(n_solutions * k.solution_s, jobs);
+                const double optimise_s = over(n_man * k.optimise_s, jobs);
+                const double replay_s =
+                    over(static_cast<double>(steps) * k.step_s, std::min(jobs, n_man));
+                const double total_s = tables_s + optimise_s + replay_s;
+                say(fmt::format(
+                    "      estimate: about {} with {} job(s) ({}: {} Euler solutions ~{}, {} "
+                    "optimisation(s) ~{}, {} serial Euler replay steps ~{}; costs measured on a "
+                    "2-core machine, docs/demo.md)",
+                    duration_words(total_s), jobs,
+                    o->quick ? "a tiny full-model mesh, size factor 8"
+                             : "the coarse full-model mesh, 138 951 nodes for the Ranger",
+                    n_solutions, duration_words(tables_s), n_man, duration_words(optimise_s), steps,
+                    duration_words(replay_s)));
+                if (scaled_engine) {
+                    say(fmt::format(
+                        "      quick: the engine's thrust x {} in {} ({}): the tiny mesh's "
+                        "first-order drag (CD 0.18 at alpha 0) is mostly numerical; the replay "
+                        "covers the first {} s",
+                        euler_quick_thrust_factor, (inputs / "aircraft.yaml").string(),
+                        thrust_scaled ? "scaled" : "no static_thrust found, unchanged",
+                        replay_until));
+                }
+                euler_json = {{"mesh", mesh_file.string()},
+                              {"cfd_config", cfd_config.string()},
+                              {"solutions", n_solutions},
+                              {"replay_steps_estimated", steps},
+                              {"estimate_s", total_s},
+                              {"thrust_factor", thrust_scaled ? euler_quick_thrust_factor : 1.0},
+                              {"replay_until", replay_until > 0.0 ? nlohmann::json(replay_until)
+                                                                  : nlohmann::json(nullptr)}};
+            }
+
             nlohmann::json timings = nlohmann::json::object();
             timings["inputs"] = seconds_since(t_inputs);
             const fs::path program = self_executable();
@@ -371,8 +547,16 @@ void add_demo(CLI::App& app, Action& action) {
             const auto t_tables = Clock::now();
             const fs::path database = out / "tables" / "database.yaml";
             {
-                say("[2/6] tables     aerodynamic tables from the vortex lattice: adaptive "
-                    "sampling, Kriging, co-Kriged control increments (manta tables)");
+                if (euler) {
+                    say(fmt::format(
+                        "[2/6] tables     the aircraft meshed (full model, coarse level{}; kept "
+                        "on a rerun) and Euler tables: adaptive sampling, Kriging, co-Kriged "
+                        "control increments, rotating-frame rate derivatives (manta tables)",
+                        o->quick ? ", sizes x 8" : ""));
+                } else {
+                    say("[2/6] tables     aerodynamic tables from the vortex lattice: adaptive "
+                        "sampling, Kriging, co-Kriged control increments (manta tables)");
+                }
                 std::vector<ChildJob> tj{
                     {"tables",
                      {"tables", "--campaign", (inputs / "campaign.yaml").string(), "--out",
@@ -383,6 +567,13 @@ void add_demo(CLI::App& app, Action& action) {
                 one.jobs = 1;
                 one.environment.clear();
                 const auto r = run_children(program, tj, one);
+                if (r[0].exit_code == 2) {
+                    // Bad input (an aircraft that cannot be meshed, a campaign key): the stage's
+                    // own one-line error.
+                    throw InputError(fmt::format("demo: the table campaign: {}; log: {}",
+                                                 strip_error_prefix(r[0].last_line),
+                                                 (out / "logs" / "tables.log").string()));
+                }
                 if (r[0].exit_code != 0) {
                     throw ConvergenceError(fmt::format(
                         "demo: the table campaign failed (exit {}): {}; log: {}", r[0].exit_code,
@@ -447,10 +638,37 @@ void add_demo(CLI::App& app, Action& action) {
 
             // 5. Replays through the unsteady vortex lattice, compared with the tables.
             const auto t_rep = Clock::now();
-            say(
-                fmt::format("[5/6] replay     {} manoeuvre(s) through the unsteady vortex lattice, "
-                            "compared with the tables (resumable)",
-                            optimised.size()));
+            if (euler) {
+                // The steps now that the manoeuvres' durations are known.
+                long steps = 0;
+                for (const auto& name : optimised) {
+                    const auto tr =
+                        replay::read_trajectory(out / "manoeuvres" / name / "trajectory_dense.csv");
+                    double flight = tr.t.back() - tr.t.front();
+                    if (replay_until > 0.0) flight = std::min(flight, replay_until);
+                    double vmax = 0.0;
+                    for (const double v : tr.V) vmax = std::max(vmax, v);
+                    const double dt = replay_dt > 0.0 ? replay_dt : ac.reference.chord / vmax;
+                    steps += static_cast<long>(std::ceil(flight / dt));
+                }
+                const double replay_s =
+                    over(static_cast<double>(steps) *
+                             (o->quick ? euler_costs_quick : euler_costs_full).step_s,
+                         std::min(jobs, std::max(1, static_cast<int>(optimised.size()))));
+                say(fmt::format(
+                    "[5/6] replay     {} manoeuvre(s){} through time-accurate Euler "
+                    "CFD on {} (moving mesh and control surfaces), compared with "
+                    "the tables: about {} steps, {} (resumable)",
+                    optimised.size(),
+                    replay_until > 0.0 ? fmt::format(", the first {} s of each,", replay_until)
+                                       : "",
+                    mesh_file.filename().string(), steps, duration_words(replay_s)));
+            } else {
+                say(fmt::format(
+                    "[5/6] replay     {} manoeuvre(s) through the unsteady vortex lattice, "
+                    "compared with the tables (resumable)",
+                    optimised.size()));
+            }
             std::vector<ChildJob> rep_jobs;
             std::vector<std::string> rep_names;
             nlohmann::json rep_times = nlohmann::json::object();
@@ -467,12 +685,22 @@ void add_demo(CLI::App& app, Action& action) {
                     "--tables",
                     database.string(),
                     "--out",
-                    dir.string(),
-                    "--threads",
-                    "1"};  // the replays run side by side, one thread each
-                if (o->replay_dt > 0.0) {
+                    dir.string()};
+                if (euler) {
+                    // Serial Euler on the campaign's mesh (its companion beside it gives the
+                    // markers and control surfaces), with the campaign's numerics.
+                    args.insert(args.end(), {"--mesh", mesh_file.string()});
+                    if (!cfd_config.empty())
+                        args.insert(args.end(), {"--cfd-config", cfd_config.string()});
+                    if (replay_until > 0.0)
+                        args.insert(args.end(), {"--until", fmt::format("{}", replay_until)});
+                } else {
+                    // The replays run side by side, one thread each.
+                    args.insert(args.end(), {"--threads", "1"});
+                }
+                if (replay_dt > 0.0) {
                     args.push_back("--dt");
-                    args.push_back(fmt::format("{}", o->replay_dt));
+                    args.push_back(fmt::format("{}", replay_dt));
                 }
                 if (markers.done("replay_" + name, args, dir / "summary.json")) {
                     say(fmt::format("      replay {}: already done (kept)", name));
@@ -506,10 +734,11 @@ void add_demo(CLI::App& app, Action& action) {
                   {"manoeuvres", names},
                   {"jobs", jobs},
                   {"quick", o->quick},
-                  {"replay_dt", o->replay_dt},
+                  {"replay_dt", replay_dt},
                   {"aircraft",
                    o->aircraft.empty() ? std::string("compiled-in Ranger 2000") : o->aircraft},
                   {"hardware_threads", hw}}},
+                {"euler", euler_json},
                 {"aircraft", "aircraft.yaml"},
                 {"timings_s", timings}};
             core::write_file_atomic(out / "run.json", run.dump(2) + "\n");

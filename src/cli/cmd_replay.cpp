@@ -40,6 +40,7 @@ struct ReplayArgs {
     std::string trajectory, source = "vlm", aircraft, out, tables;
     std::string mesh, cfd_config, cfd_start = "steady";  // --source euler
     double dt = 0.0;
+    double until = 0.0;  // 0: the whole trajectory
     int n_chord = replay_n_chord;
     double strip_width = replay_strip_width;
     double wake_length = 10.0;
@@ -68,6 +69,7 @@ int run_replay_command(const ReplayArgs& a) {
 
     replay::ReplaySettings s;
     s.dt = a.dt;
+    s.until = a.until;
     s.whole_steps = euler;  // its run takes whole steps only (duration / N)
     s.span = def.reference.span;
     s.chord = def.reference.chord;
@@ -160,8 +162,10 @@ int run_replay_command(const ReplayArgs& a) {
         print_json(j);
         return 0;
     }
-    fmt::print("{} steps of {:.4f} s ({}) through the {} source ({}) in {:.1f} s{}\n", oc.steps,
-               oc.dt, oc.dt_reason, source->name(), source_size, j.value("wall_time_s", 0.0),
+    fmt::print("{} steps of {:.4f} s ({}){} through the {} source ({}) in {:.1f} s{}\n", oc.steps,
+               oc.dt, oc.dt_reason,
+               a.until > 0.0 ? fmt::format(", the first {} s of flight", a.until) : "",
+               source->name(), source_size, j.value("wall_time_s", 0.0),
                oc.resumed_from >= 0 ? fmt::format(", resumed from step {}", oc.resumed_from) : "");
     const double mismatch = j["trajectory_check"]["rate_mismatch_max"].get<double>();
     if (mismatch > 0.05)
@@ -221,6 +225,10 @@ void add_replay(CLI::App& app, Action& action) {
         ->check(CLI::ExistingPath);
     cmd->add_option("--dt", a->dt, "Time step [s] (default: from the manoeuvre's time scales)")
         ->check(real_positive(1.0, "s"));
+    cmd->add_option("--until", a->until,
+                    "Replay only the first S seconds of flight: the trajectory cut there, as if "
+                    "the file ended (default: the whole trajectory)")
+        ->check(real_positive(1e6, "s"));
     cmd->add_option("--n-chord", a->n_chord,
                     fmt::format("vlm: chordwise vortices per strip (default {})", replay_n_chord))
         ->check(integer_in(1, 100));

@@ -118,6 +118,60 @@ aero::Motion trajectory_interpolant(const Trajectory& tr) {
     return m;
 }
 
+Trajectory first_seconds(const Trajectory& tr, double duration) {
+    if (!(duration >= 1e-6 && std::isfinite(duration)))
+        throw InputError(
+            fmt::format("{}: replay of the first {} s; expected a duration of at least 1e-6 s",
+                        tr.source, duration));
+    const double t_cut = tr.t.front() + duration;
+    constexpr double slack = 1e-9;
+    if (t_cut >= tr.t.back() - slack) return tr;
+    // Rows kept as they are: those before the cut (and one within the slack of it).
+    const auto first_after = static_cast<std::size_t>(
+        std::upper_bound(tr.t.begin(), tr.t.end(), t_cut - slack) - tr.t.begin());
+    Trajectory cut = tr;
+    const bool on_row = std::abs(tr.t[first_after] - t_cut) <= slack;
+    const std::size_t kept = on_row ? first_after + 1 : first_after;
+    auto shrink = [kept](auto& v) {
+        if (!v.empty()) v.resize(kept);
+    };
+    shrink(cut.t);
+    for (auto* group : {&cut.position, &cut.euler, &cut.rates, &cut.controls})
+        for (auto& v : *group) shrink(v);
+    shrink(cut.V);
+    shrink(cut.alpha);
+    shrink(cut.beta);
+    shrink(cut.throttle);
+    shrink(cut.mach);
+    shrink(cut.phase);
+    shrink(cut.line);
+    if (on_row) return cut;
+
+    // The last row at t_cut, from the interpolant (modes: elevator aileron rudder V alpha beta
+    // mach p q r).
+    const aero::MotionState s = trajectory_interpolant(tr).at(t_cut);
+    const std::size_t b = kept - 1;  // the row before the cut (kept >= 1: t_cut > t0)
+    cut.t.push_back(t_cut);
+    for (std::size_t k = 0; k < 3; ++k) cut.position[k].push_back(s.position[k]);
+    std::array<double, 3> e = core::euler_from_dcm(core::dcm_body_from_earth(s.euler));
+    e[0] = nearest(e[0], tr.euler[0][b]);
+    e[2] = nearest(e[2], tr.euler[2][b]);
+    for (std::size_t k = 0; k < 3; ++k) cut.euler[k].push_back(e[k]);
+    for (std::size_t k = 0; k < 3; ++k) cut.controls[k].push_back(s.modes[k]);
+    cut.V.push_back(s.modes[3]);
+    cut.alpha.push_back(s.modes[4]);
+    cut.beta.push_back(s.modes[5]);
+    if (!tr.mach.empty()) cut.mach.push_back(s.modes[6]);
+    for (std::size_t k = 0; k < 3; ++k) cut.rates[k].push_back(s.modes[7 + k]);
+    if (!tr.throttle.empty()) {
+        const double f = (t_cut - tr.t[b]) / (tr.t[b + 1] - tr.t[b]);
+        cut.throttle.push_back(tr.throttle[b] + f * (tr.throttle[b + 1] - tr.throttle[b]));
+    }
+    if (!tr.phase.empty()) cut.phase.push_back(tr.phase[b]);
+    cut.line.push_back(tr.line[b]);
+    return cut;
+}
+
 TimeStepChoice choose_time_step(const Trajectory& tr, const TimeStepRule& rule, double chord) {
     TimeStepChoice c;
     constexpr double inf = std::numeric_limits<double>::infinity();

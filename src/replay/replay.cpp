@@ -125,7 +125,8 @@ double cpu_seconds() {
 }  // namespace
 
 ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabase& tables,
-                         const Trajectory& tr, const ReplaySettings& s, const fs::path& out) {
+                         const Trajectory& trajectory, const ReplaySettings& s,
+                         const fs::path& out) {
     using clock = std::chrono::steady_clock;
     const auto wall0 = clock::now();
     const double cpu0 = cpu_seconds();
@@ -141,6 +142,12 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
         if (!(s.tolerances[k] > 0.0 && std::isfinite(s.tolerances[k])))
             throw InputError(fmt::format("replay: tolerance of {} is {}; expected > 0",
                                          coefficient_names[k], s.tolerances[k]));
+    if (s.until < 0.0 || !std::isfinite(s.until))
+        throw InputError(fmt::format(
+            "replay: until {} s; expected a duration > 0 s, or 0 for the whole trajectory",
+            s.until));
+    // A partial replay is that of the trajectory cut at t0 + until, as if the file ended there.
+    const Trajectory tr = s.until > 0.0 ? first_seconds(trajectory, s.until) : trajectory;
     ReplayOutcome oc;
     TimeStepChoice choice;
     if (s.dt > 0.0) {
@@ -350,6 +357,8 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
     j["source_fingerprint"] = source.fingerprint();
     j["trajectory"] = s.trajectory_label.empty() ? tr.source : s.trajectory_label;
     j["manoeuvre"] = tr.meta("manoeuvre", fs::path(tr.source).stem().string());
+    j["until"] = s.until > 0.0 ? nlohmann::json(s.until) : nlohmann::json(nullptr);
+    j["duration"] = tr.t.back() - tr.t.front();
     j["dt"] = choice.dt;
     j["dt_reason"] = choice.reason;
     j["steps"] = n_steps;

@@ -261,8 +261,9 @@ contains "tables folder message" "$work/err.txt" 'a folder without database.yaml
 check "demo resumed" 0 "$manta" demo --quick --out "$work/demo" --jobs 2
 contains "demo keeps finished stages" "$work/out.txt" 'optimise level_turn: already done'
 contains "demo keeps the replay" "$work/out.txt" 'replay level_turn: already done'
-check "demo euler fidelity" 2 "$manta" demo --fidelity euler --out "$work/demo_euler"
-contains "demo euler message" "$work/err.txt" 'no Euler CFD source'
+# (--fidelity euler runs for days; its quick run is tests/cli/demo_euler_test.sh)
+check "demo unknown fidelity" 2 "$manta" demo --fidelity cfd --out "$work/demo_bad_fidelity"
+contains "demo unknown fidelity message" "$work/err.txt" "'cfd' is not a fidelity; expected vlm or euler"
 check "demo unknown manoeuvre" 2 "$manta" demo --manoeuvres loop_the_loop --out "$work/demo_bad"
 contains "demo unknown manoeuvre message" "$work/err.txt" "'loop_the_loop' is neither"
 

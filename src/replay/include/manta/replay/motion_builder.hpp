@@ -68,6 +68,17 @@ struct ReplayMotion {
 /// made continuous as above, and modes elevator aileron rudder V alpha beta mach p q r).
 [[nodiscard]] aero::Motion trajectory_interpolant(const Trajectory& trajectory);
 
+/// The first `duration` seconds of `trajectory` (from its first time t0), as if the file ended
+/// there: its rows before t0 + duration and a last row at exactly t0 + duration (a row within
+/// 1e-9 s of it is kept as it is). The last row's columns are those of trajectory_interpolant
+/// there (the C1 cubic the replay motion follows): position, airspeed, air angles, body rates,
+/// deflections and, when the trajectory has one, Mach; its Euler angles the principal triple
+/// (|theta| <= 90 deg) of the interpolated attitude, phi and psi shifted by whole turns to the row
+/// before; the throttle linear between the neighbouring rows; the phase and file line those of
+/// the row before. A duration that reaches the last row gives the whole trajectory. InputError
+/// unless duration is finite and at least 1e-6 s.
+[[nodiscard]] Trajectory first_seconds(const Trajectory& trajectory, double duration);
+
 /// Euler angles of a direction-cosine matrix body-from-frame, continuous with `previous` (see
 /// build_motion); with no previous the principal triple of core::euler_from_dcm, |theta| <= pi/2.
 /// (The matrix of a triple is core::dcm_body_from_earth, manta/core/frames.hpp.)

@@ -66,6 +66,9 @@ struct ReplaySettings {
     bool restart = false;
     /// Keep checkpoint/ when the replay completes.
     bool keep_checkpoint = false;
+    /// Replay only the first `until` seconds of flight (first_seconds: the trajectory cut there,
+    /// the time step chosen on the cut trajectory); 0: the whole trajectory.
+    double until = 0.0;
     /// Stop (after writing a checkpoint) once this many steps have been done in this call, as a
     /// killed process would; -1: run to the end. For tests.
     int stop_after_steps = -1;
