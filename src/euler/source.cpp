@@ -141,17 +141,17 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
     setup.flow.beta = q.beta;
     const Domain domain{&m, &dual, m.n_nodes(), &halo_};
     SteadySolver solver(domain, comm_, setup);
+    std::optional<RotatingFrame> frame;
     if (rotates(rates)) {
         // The frame turning with the body (rotating_frame.hpp, shared with manta cfd --p-hat);
         // a symmetry plane mirrors the flow, so the rotation must be about its normal.
         const ReferenceValues& ref = setup_.reference;
-        const RotatingFrame frame =
-            body_rate_frame(rates, q.mach, ref.span, ref.chord, ref.moment_point);
-        if (const auto c = symmetry_crossing(frame, setup_.roles, dual_))
+        frame = body_rate_frame(rates, q.mach, ref.span, ref.chord, ref.moment_point);
+        if (const auto c = symmetry_crossing(*frame, setup_.roles, dual_))
             throw InputError(symmetry_crossing_message("euler source", {"p_hat", "q_hat", "r_hat"},
                                                        rates, label_, mesh_.markers()[c->marker],
                                                        c->normal, static_cast<long long>(c->node)));
-        solver.set_rotating_frame(frame);
+        solver.set_rotating_frame(*frame);
     }
 
     // Warm start from the nearest converged solution (distance in degrees, Mach / 0.05 and
@@ -194,10 +194,7 @@ aero::SourceResult EulerSource::evaluate(const aero::AeroQuery<double>& q,
         // (the coarse Ranger at M 0.3, alpha 2 deg, started from M 0.2, alpha 6 deg, diverged
         // with six back-offs): solve again from the free stream, and say both when that fails.
         SteadySolver cold(domain, comm_, setup);
-        if (rotates(rates))
-            cold.set_rotating_frame(body_rate_frame(rates, q.mach, setup_.reference.span,
-                                                    setup_.reference.chord,
-                                                    setup_.reference.moment_point));
+        if (frame) cold.set_rotating_frame(*frame);
         try {
             oc = cold.solve();
         } catch (const ConvergenceError& e) {
