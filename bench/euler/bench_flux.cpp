@@ -184,18 +184,17 @@ void BM_residual(benchmark::State& state) {
     if (state.range(0) >= 10) o.flux.scheme = euler::FluxScheme::jst;
     Vec5 Winf;
     Winf << 1.0, 0.5, 0.0, 0.0, 1.0 / gam;
-    euler::SpatialOperator op({&c.m, &c.d, c.m.n_nodes(), &c.halo},
-                              {euler::BoundaryKind::farfield}, Winf, gam, o);
+    euler::SpatialOperator op({&c.m, &c.d, c.m.n_nodes(), &c.halo}, {euler::BoundaryKind::farfield},
+                              Winf, gam, o);
     euler::NodeStates R;
     op.residual(c.U, R);
     for (auto _ : state) {
         op.residual(c.U, R);
         benchmark::DoNotOptimize(R.data());
     }
-    state.counters["ns_per_edge"] =
-        benchmark::Counter(static_cast<double>(state.iterations()) * c.d.n_edges(),
-                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert,
-                           benchmark::Counter::kIs1000);
+    state.counters["ns_per_edge"] = benchmark::Counter(
+        static_cast<double>(state.iterations()) * c.d.n_edges(),
+        benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
 }
 // 1, 2: Roe order 1 and 2; 12: JST.
 BENCHMARK(BM_residual)->Arg(1)->Arg(2)->Arg(12)->Unit(benchmark::kMillisecond);
@@ -205,18 +204,48 @@ void BM_jacobian(benchmark::State& state) {
     euler::SpatialOptions o;
     Vec5 Winf;
     Winf << 1.0, 0.5, 0.0, 0.0, 1.0 / gam;
-    euler::SpatialOperator op({&c.m, &c.d, c.m.n_nodes(), &c.halo},
-                              {euler::BoundaryKind::farfield}, Winf, gam, o);
+    euler::SpatialOperator op({&c.m, &c.d, c.m.n_nodes(), &c.halo}, {euler::BoundaryKind::farfield},
+                              Winf, gam, o);
     euler::BlockMatrix J = op.make_jacobian_matrix();
     for (auto _ : state) {
         op.jacobian(c.U, J);
         benchmark::ClobberMemory();
     }
-    state.counters["ns_per_edge"] =
-        benchmark::Counter(static_cast<double>(state.iterations()) * c.d.n_edges(),
-                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert,
-                           benchmark::Counter::kIs1000);
+    state.counters["ns_per_edge"] = benchmark::Counter(
+        static_cast<double>(state.iterations()) * c.d.n_edges(),
+        benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
 }
 BENCHMARK(BM_jacobian)->Unit(benchmark::kMillisecond);
+
+// The per-step geometry of a moving mesh: the dual metrics recomputed from moved coordinates
+// and the volumes the dual faces sweep between two coordinate levels (a rigid rotation).
+void BM_moving_geometry(benchmark::State& state) {
+    Case& c = box();
+    const auto n = static_cast<std::size_t>(c.m.n_nodes());
+    std::vector<double> x0(3 * n), x1(3 * n);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Vector3d p = c.m.node(static_cast<mesh::Index>(i));
+        const Eigen::Vector3d q = R * p;
+        for (int k = 0; k < 3; ++k) {
+            x0[3 * i + k] = p[k];
+            x1[3 * i + k] = q[k];
+        }
+    }
+    mesh::DualFaceValues swept;
+    swept.resize_for(c.d);
+    for (auto _ : state) {
+        if (state.range(0) == 0)
+            mesh::update_dual_metrics(c.m, c.d);
+        else
+            mesh::swept_volumes(c.m, c.d, x0, x1, swept);
+        benchmark::ClobberMemory();
+    }
+    state.counters["ns_per_cell"] = benchmark::Counter(
+        static_cast<double>(state.iterations()) * c.m.n_cells(),
+        benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
+}
+// 0: update_dual_metrics; 1: swept_volumes.
+BENCHMARK(BM_moving_geometry)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -52,6 +52,7 @@ Index local_index(const BoundaryVertices& bv, Index n) {
 void fill_geometry(const Mesh& mesh, DualMetrics& d) {
     d.edge_normals.setZero();
     std::fill(d.dual_volumes.begin(), d.dual_volumes.end(), 0.0);
+    const Index* slot = d.cell_face_edges.data();
     for (Index c = 0; c < mesh.n_cells(); ++c) {
         const auto nodes = mesh.cell(c);
         Eigen::Vector3d cc = Eigen::Vector3d::Zero();
@@ -69,7 +70,7 @@ void fill_geometry(const Mesh& mesh, DualMetrics& d) {
                 const Eigen::Vector3d xq = mesh.node(q);
                 const Eigen::Vector3d m = 0.5 * (xp + xq);
                 const Eigen::Vector3d s = 0.5 * (cc - m).cross(cf - m);
-                const Index e = find_edge(d, p, q);
+                const Index e = *slot++;
                 if (p < q)
                     d.edge_normals.col(e) += s;
                 else
@@ -80,8 +81,11 @@ void fill_geometry(const Mesh& mesh, DualMetrics& d) {
         }
     }
     for (auto& bv : d.boundary) bv.normals.setZero();
+    const Index* bslot = d.boundary_face_slots.data();
     for (Index f = 0; f < mesh.n_faces(); ++f) {
         auto& bv = d.boundary[mesh.face_marker(f)];
+        const Index* face_slots = bslot;
+        bslot += mesh.face(f).size();
         const auto nodes = mesh.face(f);
         const int nf = static_cast<int>(nodes.size());
         Eigen::Vector3d cf = Eigen::Vector3d::Zero();
@@ -93,8 +97,8 @@ void fill_geometry(const Mesh& mesh, DualMetrics& d) {
             const Eigen::Vector3d xp = mesh.node(p);
             const Eigen::Vector3d xq = mesh.node(q);
             const Eigen::Vector3d m = 0.5 * (xp + xq);
-            bv.normals.col(local_index(bv, p)) += 0.5 * (m - xp).cross(cf - xp);
-            bv.normals.col(local_index(bv, q)) += 0.5 * (cf - xq).cross(m - xq);
+            bv.normals.col(face_slots[k]) += 0.5 * (m - xp).cross(cf - xp);
+            bv.normals.col(face_slots[(k + 1) % nf]) += 0.5 * (cf - xq).cross(m - xq);
         }
     }
 }
@@ -108,7 +112,11 @@ bool belongs_to(const Mesh& mesh, const DualMetrics& d) {
         return false;
     for (const auto& bv : d.boundary)
         if (bv.normals.cols() != static_cast<Index>(bv.nodes.size())) return false;
-    return true;
+    std::size_t n_face_edges = 0, n_face_nodes = 0;
+    for (Index c = 0; c < mesh.n_cells(); ++c)
+        for (const auto& f : cell_faces(mesh.cell_type(c))) n_face_edges += f[3] < 0 ? 3 : 4;
+    for (Index f = 0; f < mesh.n_faces(); ++f) n_face_nodes += mesh.face(f).size();
+    return d.cell_face_edges.size() == n_face_edges && d.boundary_face_slots.size() == n_face_nodes;
 }
 
 /// Position of node n in a flat coordinate array.
@@ -143,7 +151,8 @@ std::size_t DualMetrics::memory_bytes() const noexcept {
                     static_cast<std::size_t>(edge_normals.size()) * sizeof(double) +
                     dual_volumes.capacity() * sizeof(double) +
                     node_edge_offsets.capacity() * sizeof(std::int64_t) +
-                    node_edges.capacity() * sizeof(Index);
+                    node_edges.capacity() * sizeof(Index) +
+                    (cell_face_edges.capacity() + boundary_face_slots.capacity()) * sizeof(Index);
     for (const auto& bv : boundary)
         b += bv.nodes.capacity() * sizeof(Index) +
              static_cast<std::size_t>(bv.normals.size()) * sizeof(double);
@@ -204,6 +213,21 @@ DualMetrics compute_dual_metrics(const Mesh& mesh) {
         bv.nodes.erase(std::unique(bv.nodes.begin(), bv.nodes.end()), bv.nodes.end());
         bv.normals = Eigen::Matrix3Xd::Zero(3, static_cast<Index>(bv.nodes.size()));
     }
+    // The topology the per-step geometry reuses (fill_geometry's and swept_volumes' order).
+    d.cell_face_edges.reserve(static_cast<std::size_t>(mesh.n_cells()) * 12);
+    for (Index c = 0; c < mesh.n_cells(); ++c) {
+        const auto nodes = mesh.cell(c);
+        for (const auto& f : cell_faces(mesh.cell_type(c))) {
+            const int nf = f[3] < 0 ? 3 : 4;
+            for (int k = 0; k < nf; ++k)
+                d.cell_face_edges.push_back(find_edge(d, nodes[f[k]], nodes[f[(k + 1) % nf]]));
+        }
+    }
+    d.cell_face_edges.shrink_to_fit();
+    for (Index f = 0; f < mesh.n_faces(); ++f) {
+        const auto& bv = d.boundary[mesh.face_marker(f)];
+        for (Index n : mesh.face(f)) d.boundary_face_slots.push_back(local_index(bv, n));
+    }
     d.edge_normals = Eigen::Matrix3Xd::Zero(3, ne);
     d.dual_volumes.assign(nn, 0.0);
     fill_geometry(mesh, d);
@@ -253,6 +277,7 @@ void swept_volumes(const Mesh& mesh, const DualMetrics& dual, std::span<const do
     // Interior: the triangle (m_pq, c_cell, c_f) of each face edge p->q, area vector
     // (c_cell - m) x (c_f - m) / 2 oriented p->q (as in the metrics).
     std::array<Eigen::Vector3d, 8> a, b;
+    const Index* slot = dual.cell_face_edges.data();
     for (Index c = 0; c < mesh.n_cells(); ++c) {
         const auto nodes = mesh.cell(c);
         const auto nc = nodes.size();
@@ -279,18 +304,20 @@ void swept_volumes(const Mesh& mesh, const DualMetrics& dual, std::span<const do
                 const Index p = nodes[lp], q = nodes[lq];
                 const Eigen::Vector3d ma = 0.5 * (a[lp] + a[lq]), mb = 0.5 * (b[lp] + b[lq]);
                 const double s = swept(ma, cca, cfa, mb, ccb, cfb);
-                const auto e = static_cast<std::size_t>(find_edge(dual, p, q));
+                const auto e = static_cast<std::size_t>(*slot++);
                 out.edges[e] += p < q ? s : -s;
             }
         }
     }
     // Boundary: the triangles (p, m_pq, c_f) and (q, c_f, m_pq) of each outward boundary face.
+    const Index* bslot = dual.boundary_face_slots.data();
     for (Index f = 0; f < mesh.n_faces(); ++f) {
         const int mk = mesh.face_marker(f);
-        const BoundaryVertices& bv = dual.boundary[static_cast<std::size_t>(mk)];
         auto& sb = out.boundary[static_cast<std::size_t>(mk)];
         const auto nodes = mesh.face(f);
         const auto nf = nodes.size();
+        const Index* face_slots = bslot;
+        bslot += nf;
         Eigen::Vector3d cfa = Eigen::Vector3d::Zero(), cfb = Eigen::Vector3d::Zero();
         for (std::size_t k = 0; k < nf; ++k) {
             a[k] = at(x_a, nodes[k]);
@@ -303,10 +330,8 @@ void swept_volumes(const Mesh& mesh, const DualMetrics& dual, std::span<const do
         for (std::size_t k = 0; k < nf; ++k) {
             const std::size_t kq = (k + 1) % nf;
             const Eigen::Vector3d ma = 0.5 * (a[k] + a[kq]), mb = 0.5 * (b[k] + b[kq]);
-            sb[static_cast<std::size_t>(local_index(bv, nodes[k]))] +=
-                swept(a[k], ma, cfa, b[k], mb, cfb);
-            sb[static_cast<std::size_t>(local_index(bv, nodes[kq]))] +=
-                swept(a[kq], cfa, ma, b[kq], cfb, mb);
+            sb[static_cast<std::size_t>(face_slots[k])] += swept(a[k], ma, cfa, b[k], mb, cfb);
+            sb[static_cast<std::size_t>(face_slots[kq])] += swept(a[kq], cfa, ma, b[kq], cfb, mb);
         }
     }
 }

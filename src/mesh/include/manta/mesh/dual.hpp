@@ -42,6 +42,12 @@ struct DualMetrics {
     std::vector<Index> node_edges;  ///< see `node_edge_offsets`
     /// One entry per marker, in the mesh's marker order.
     std::vector<BoundaryVertices> boundary;
+    /// Topology cached for the per-step geometry (`update_dual_metrics`, `swept_volumes`): the
+    /// edge number of every face edge of every cell, cells in order, faces in `cell_faces`
+    /// order, edges k -> k+1 of each face; and the local number (in its marker's `nodes`) of
+    /// every node of every boundary face, faces in order.
+    std::vector<Index> cell_face_edges;
+    std::vector<Index> boundary_face_slots;  ///< see `cell_face_edges`
 
     [[nodiscard]] Index n_edges() const noexcept { return static_cast<Index>(edges.size()); }
     /// Bytes held by the arrays, for memory reports.
