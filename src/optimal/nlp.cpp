@@ -13,9 +13,13 @@
 #include <cstdlib>
 #include <exception>
 #include <limits>
+#include <utility>
+#include <vector>
 
+#include "detail/multiphase.hpp"
 #include "detail/transcription.hpp"
 #include "manta/core/error.hpp"
+#include "manta/optimal/multiphase.hpp"
 #include "manta/optimal/solve.hpp"
 
 namespace manta::optimal {
@@ -42,12 +46,12 @@ bool all_finite(const double* v, int n) {
 /// variables are y = (z - ref0) / (ref - ref0) for those variables (IPOPT's own scaling only
 /// multiplies, so the offset is applied here), z for the others: z = offset + span y with
 /// span 1, offset 0 where there is no reference; derivatives follow by the chain rule.
+/// Tr: detail::Transcription (one phase) or detail::MultiTranscription; z0: its starting point.
+template <class Tr>
 class Nlp final : public Ipopt::TNLP {
 public:
-    Nlp(detail::Transcription& tr, const Guess& guess, const SolverOptions& options)
-        : tr_(tr), options_(options) {
-        z0_.resize(tr.n_vars());
-        tr_.initial_point(guess, z0_.data());
+    Nlp(Tr& tr, std::vector<double> z0, const SolverOptions& options)
+        : tr_(tr), options_(options), z0_(std::move(z0)) {
         tr_.scaling(z0_.data(), var_scale_, row_scale_, obj_scale_);
         gl_.resize(tr.n_rows());
         gu_.resize(tr.n_rows());
@@ -263,7 +267,7 @@ private:
         }
     }
 
-    detail::Transcription& tr_;
+    Tr& tr_;
     const SolverOptions& options_;
     std::vector<double> z0_, xl_, xu_, gl_, gu_, g_work_, last_x_;
     Eigen::VectorXd var_scale_, row_scale_;
@@ -337,16 +341,19 @@ SolveStatus map_status(Ipopt::ApplicationReturnStatus s) {
     }
 }
 
-}  // namespace
+/// IPOPT's outcome on one NLP: the point to report (the final iterate, or on failure the least
+/// infeasible accepted one, without multipliers) and the status.
+struct IpoptRun {
+    Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
+    int iterations = 0;
+    std::vector<double> z, lambda;  // lambda empty: none
+};
 
-Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
-               const SolverOptions& options) {
-    const double cpu0 = process_cpu_seconds();
-    const auto wall0 = std::chrono::steady_clock::now();
-
-    if (options.reject_guess_outside_bounds) validate_guess(model.info(), guess);
-    detail::Transcription tr(model, mesh);
-    Ipopt::SmartPtr<Nlp> nlp = new Nlp(tr, guess, options);
+/// Run IPOPT on the NLP `tr` from z0 with the options (throws the first exception of a
+/// callback, InputError for an IPOPT option it rejects).
+template <class Tr>
+IpoptRun run_ipopt(Tr& tr, std::vector<double> z0, const SolverOptions& options) {
+    Ipopt::SmartPtr<Nlp<Tr>> nlp = new Nlp<Tr>(tr, std::move(z0), options);
 
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
     auto opt = app->Options();
@@ -386,21 +393,17 @@ Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
     st = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
     if (nlp->error_) std::rethrow_exception(nlp->error_);
 
-    Solution sol;
-    sol.status = map_status(st);
-    sol.ipopt_status = static_cast<int>(st);
-    sol.status_text = status_text(st);
-    sol.iterations =
+    IpoptRun run;
+    run.status = st;
+    run.iterations =
         Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : nlp->iterations_;
-    sol.n_variables = tr.n_vars();
-    sol.n_constraints = tr.n_rows();
-    sol.n_jacobian_nonzeros = tr.nnz_jacobian();
-    sol.n_hessian_nonzeros = options.hessian == HessianMode::exact ? tr.nnz_hessian() : 0;
-
     const bool have_final = static_cast<int>(nlp->final_x_.size()) == tr.n_vars();
     const double* z = have_final ? nlp->final_x_.data() : nullptr;
     const double* lambda = have_final ? nlp->final_lambda_.data() : nullptr;
-    if (!sol.converged() && !nlp->best_x_.empty()) {
+    const SolveStatus mapped = map_status(st);
+    const bool converged =
+        mapped == SolveStatus::solved || mapped == SolveStatus::solved_acceptable;
+    if (!converged && !nlp->best_x_.empty()) {
         // on failure report the least infeasible accepted iterate
         const double final_v = have_final ? nlp->scaled_violation(z) : kInf;
         if (nlp->best_violation_ < final_v) {
@@ -409,8 +412,39 @@ Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
         }
     }
     if (z == nullptr) {
-        throw NumericalError("IPOPT returned no iterate: " + sol.status_text);
+        throw NumericalError("IPOPT returned no iterate: " + status_text(st));
     }
+    run.z.assign(z, z + tr.n_vars());
+    if (lambda != nullptr) run.lambda.assign(lambda, lambda + tr.n_rows());
+    return run;
+}
+
+}  // namespace
+
+Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
+               const SolverOptions& options) {
+    const double cpu0 = process_cpu_seconds();
+    const auto wall0 = std::chrono::steady_clock::now();
+
+    if (options.reject_guess_outside_bounds) validate_guess(model.info(), guess);
+    detail::Transcription tr(model, mesh);
+    std::vector<double> z0(static_cast<std::size_t>(tr.n_vars()));
+    tr.initial_point(guess, z0.data());
+    const IpoptRun run = run_ipopt(tr, std::move(z0), options);
+    const Ipopt::ApplicationReturnStatus st = run.status;
+
+    Solution sol;
+    sol.status = map_status(st);
+    sol.ipopt_status = static_cast<int>(st);
+    sol.status_text = status_text(st);
+    sol.iterations = run.iterations;
+    sol.n_variables = tr.n_vars();
+    sol.n_constraints = tr.n_rows();
+    sol.n_jacobian_nonzeros = tr.nnz_jacobian();
+    sol.n_hessian_nonzeros = options.hessian == HessianMode::exact ? tr.nnz_hessian() : 0;
+
+    const double* z = run.z.data();
+    const double* lambda = run.lambda.empty() ? nullptr : run.lambda.data();
     tr.extract(z, lambda, options.n_reported_violations, sol);
     sol.objective = tr.user_objective(z);
     sol.cpu_time = process_cpu_seconds() - cpu0;
@@ -429,6 +463,64 @@ Solution solve(const Model& model, const Mesh& mesh, const Guess& guess,
         }
     }
     if (!sol.converged() && !options.failure_csv.empty()) write_csv(sol, options.failure_csv);
+    return sol;
+}
+
+MultiPhaseSolution solve(const MultiPhaseProblem& problem, const SolverOptions& options) {
+    const double cpu0 = process_cpu_seconds();
+    const auto wall0 = std::chrono::steady_clock::now();
+
+    detail::MultiTranscription tr(problem);
+    if (options.reject_guess_outside_bounds) {
+        for (const auto& ph : problem.phases) validate_guess(ph.model->info(), ph.guess);
+    }
+    std::vector<double> z0(static_cast<std::size_t>(tr.n_vars()));
+    tr.initial_point(z0.data());
+    const IpoptRun run = run_ipopt(tr, std::move(z0), options);
+
+    MultiPhaseSolution sol;
+    sol.status = map_status(run.status);
+    sol.ipopt_status = static_cast<int>(run.status);
+    sol.status_text = status_text(run.status);
+    sol.iterations = run.iterations;
+    tr.extract(run.z.data(), run.lambda.empty() ? nullptr : run.lambda.data(),
+               options.n_reported_violations, sol);
+    if (options.hessian != HessianMode::exact) sol.n_hessian_nonzeros = 0;
+    sol.objective = tr.user_objective(run.z.data());
+    for (auto& ph : sol.phases) {
+        ph.status = sol.status;
+        ph.ipopt_status = sol.ipopt_status;
+        ph.status_text = sol.status_text;
+        ph.iterations = sol.iterations;
+    }
+    sol.cpu_time = process_cpu_seconds() - cpu0;
+    sol.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (options.resimulate) {
+        int worst = -1;
+        double worst_error = 0.0;
+        for (std::size_t k = 0; k < sol.phases.size(); ++k) {
+            Solution& ph = sol.phases[k];
+            ph.resimulation =
+                resimulate(*problem.phases[k].model, ph, options.resimulation_tolerance);
+            if (ph.resimulation.done && ph.resimulation.max_scaled_error > worst_error) {
+                worst_error = ph.resimulation.max_scaled_error;
+                worst = static_cast<int>(k);
+            }
+        }
+        if (sol.converged() && options.resolution_limit > 0.0 &&
+            worst_error > options.resolution_limit) {
+            sol.status = SolveStatus::solved_unresolved;
+            sol.status_text = fmt::format(
+                "{}, but not resolved: in phase {} the re-simulated controls depart from the "
+                "collocated states by {:.3g} (scaled, limit {:g}); refine that phase's mesh and "
+                "solve again",
+                sol.status_text, worst, worst_error, options.resolution_limit);
+            for (auto& ph : sol.phases) {
+                ph.status = sol.status;
+                ph.status_text = sol.status_text;
+            }
+        }
+    }
     return sol;
 }
 

@@ -36,6 +36,14 @@ public:
     [[nodiscard]] int n_segments() const { return static_cast<int>(seg_.size()); }
     [[nodiscard]] int n_points() const { return n_points_; }
 
+    // ---- columns of the ends (multi-phase linkage) --------------------------------------------
+    [[nodiscard]] const Model& model() const { return model_; }
+    [[nodiscard]] int initial_state_col(int r) const { return x_col(0, r); }
+    [[nodiscard]] int final_state_col(int r) const { return x_col(n_mesh_points_ - 1, r); }
+    [[nodiscard]] int parameter_col(int j) const { return p_col(j); }
+    [[nodiscard]] int initial_time_col() const { return t0_col(); }
+    [[nodiscard]] int final_time_col() const { return tf_col(); }
+
     // ---- problem data ------------------------------------------------------------------------
     void bounds(double* x_l, double* x_u, double* g_l, double* g_u) const;
     /// Initial point from a guess (clipped into the bounds).

@@ -1,0 +1,212 @@
+#pragma once
+/// @file multiphase.hpp
+/// Multi-phase optimal control (docs/optimal-control.md, "Multiple phases"): N phases in
+/// sequence, each a single-phase problem of its own (a `Model`: dynamics, path constraints,
+/// bounds, events, Mayer and Lagrange cost, its own free or fixed t0 and tf) on a mesh of its
+/// own, joined by linkage constraints between the end of phase k and the start of phase k + 1:
+///
+///     minimise (or maximise)  Σ_k [ Φ_k(x_k(t0_k), x_k(tf_k), p, t0_k, tf_k) + ∫ L_k dt ]
+///     subject to  every phase's own constraints (problem.hpp),
+///                 t0_{k+1} = tf_k                                (time continuity, default)
+///                 l_lo <= l_k(x_k(tf_k), x_{k+1}(t0_{k+1}), p) <= l_hi   (linkage)
+///
+/// with, by default, l_k = x_{k+1}(t0_{k+1}) - x_k(tf_k) = 0 (state continuity; the phases must
+/// then have as many states, paired by index). A linkage function may jump states (a stage's
+/// mass dropped, a velocity kick) and join phases with different numbers of states and controls.
+/// The static parameters p are shared: every phase declares the same parameters (names in the
+/// same order); the NLP keeps one copy per phase tied by equality rows, so each phase's model is
+/// evaluated as it is alone. The NLP is the phases' transcriptions side by side (LGL, IPOPT,
+/// exact sparse first and second derivatives) plus the linkage rows.
+
+#include <Eigen/Core>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "manta/core/error.hpp"
+#include "manta/optimal/ad.hpp"
+#include "manta/optimal/hyper.hpp"
+#include "manta/optimal/model.hpp"
+#include "manta/optimal/problem.hpp"
+#include "manta/optimal/solve.hpp"
+
+namespace manta::optimal {
+
+/// A linkage function l(x_f, x_0, p) between the end of one phase (x_f: its final state, of
+/// n_from() states) and the start of the next (x_0, n_to() states), with its constraints' names
+/// and bounds. Variables, in order: x_f, x_0, p; outputs: one per constraint.
+class LinkModel {
+public:
+    virtual ~LinkModel() = default;
+    [[nodiscard]] virtual const std::vector<Constraint>& constraints() const = 0;
+    /// Number of states of the phase that ends (x_f) and of the phase that starts (x_0).
+    [[nodiscard]] virtual int n_from() const = 0;
+    [[nodiscard]] virtual int n_to() const = 0;
+    /// True when l is linear (its Hessian is zero and is not evaluated).
+    [[nodiscard]] virtual bool linear() const { return false; }
+    virtual void values(std::span<const double> v, std::span<double> out) const = 0;
+    /// Outputs and their Jacobian (row-major, n_out x v.size()).
+    virtual void jacobian(std::span<const double> v, std::span<double> out,
+                          std::span<double> jac) const = 0;
+    /// Hessian (full, symmetric) of sum_k weight_k out_k.
+    virtual void hessian(std::span<const double> v, std::span<const double> weights,
+                         std::span<double> hess) const = 0;
+};
+
+/// A LinkModel of a function object F with
+///
+///     template <class T> void operator()(std::span<const T> xf, std::span<const T> x0,
+///                                        std::span<const T> p, std::span<T> l) const;
+///
+/// (a generic lambda taking `auto` arguments will do), differentiated by forward AD
+/// (run-time-sized scalars: links are few).
+template <class F>
+class LinkFunction final : public LinkModel {
+public:
+    LinkFunction(int n_from, int n_to, std::vector<Constraint> constraints, F f)
+        : f_(std::move(f)), c_(std::move(constraints)), n_from_(n_from), n_to_(n_to) {}
+    [[nodiscard]] const std::vector<Constraint>& constraints() const override { return c_; }
+    [[nodiscard]] int n_from() const override { return n_from_; }
+    [[nodiscard]] int n_to() const override { return n_to_; }
+    void values(std::span<const double> v, std::span<double> out) const override {
+        eval<double>(v, out);
+    }
+    void jacobian(std::span<const double> v, std::span<double> out,
+                  std::span<double> jac) const override {
+        const int n = static_cast<int>(v.size());
+        std::vector<AdDyn1> a;
+        a.reserve(v.size());
+        for (int i = 0; i < n; ++i) a.push_back(AdDyn1::variable(v[i], n, i));
+        std::vector<AdDyn1> o(out.size());
+        eval<AdDyn1>(std::span<const AdDyn1>(a), std::span<AdDyn1>(o));
+        for (std::size_t r = 0; r < o.size(); ++r) {
+            out[r] = o[r].value();
+            for (int c = 0; c < n; ++c)
+                jac[r * static_cast<std::size_t>(n) + c] = o[r].derivative(c);
+        }
+    }
+    void hessian(std::span<const double> v, std::span<const double> weights,
+                 std::span<double> hess) const override {
+        const int n = static_cast<int>(v.size());
+        std::vector<AdDynH> a;
+        a.reserve(v.size());
+        for (int i = 0; i < n; ++i) a.push_back(AdDynH::variable(v[i], n, i));
+        std::vector<AdDynH> o(weights.size());
+        eval<AdDynH>(std::span<const AdDynH>(a), std::span<AdDynH>(o));
+        std::fill(hess.begin(), hess.end(), 0.0);
+        for (std::size_t r = 0; r < o.size(); ++r) {
+            if (weights[r] == 0.0) continue;
+            for (int i = 0; i < n; ++i) {
+                for (int j = 0; j <= i; ++j) {
+                    const double h = weights[r] * o[r].hessian(i, j);
+                    hess[i * static_cast<std::size_t>(n) + j] += h;
+                    if (j != i) hess[j * static_cast<std::size_t>(n) + i] += h;
+                }
+            }
+        }
+    }
+
+private:
+    template <class T>
+    void eval(std::span<const T> v, std::span<T> out) const {
+        const auto nf = static_cast<std::size_t>(n_from_);
+        const auto nt = static_cast<std::size_t>(n_to_);
+        f_(v.subspan(0, nf), v.subspan(nf, nt), v.subspan(nf + nt), out);
+    }
+    F f_;
+    std::vector<Constraint> c_;
+    int n_from_ = 0, n_to_ = 0;
+};
+
+/// A linkage function of `n_from` final and `n_to` initial states with these constraints.
+template <class F>
+[[nodiscard]] std::shared_ptr<const LinkModel> make_link(int n_from, int n_to,
+                                                         std::vector<Constraint> constraints, F f) {
+    return std::make_shared<LinkFunction<F>>(n_from, n_to, std::move(constraints), std::move(f));
+}
+
+/// The link from phase k to phase k + 1.
+struct Link {
+    /// Null: continuity of every state, x_{k+1}(t0_{k+1}) = x_k(tf_k) (equal state counts).
+    std::shared_ptr<const LinkModel> function;
+    /// t0_{k+1} = tf_k (a linear row); false leaves the two times independent.
+    bool time_continuity = true;
+};
+
+/// One phase: its problem, mesh and initial guess (over the phase's own [t0, tf]).
+struct Phase {
+    std::shared_ptr<const Model> model;
+    Mesh mesh;
+    Guess guess;
+};
+
+/// Phases in sequence and the links between them.
+struct MultiPhaseProblem {
+    std::string name;           ///< reports
+    std::vector<Phase> phases;  ///< at least one
+    /// phases.size() - 1 links, link k joining phase k to k + 1; empty: default links (state and
+    /// time continuity) everywhere.
+    std::vector<Link> links;
+
+    [[nodiscard]] int n_phases() const { return static_cast<int>(phases.size()); }
+    /// Check counts, sizes, shared parameters, the sense of the objective and the bounds across
+    /// each link (a continuity link whose two sides' bounds do not overlap, tf_k and t0_{k+1}
+    /// bounds that do not overlap); throws a one-line InputError naming the phase, the link and
+    /// the values in conflict. Called by solve and check_derivatives.
+    void validate() const;
+    /// The link from phase k to k + 1 (the default one when `links` is empty).
+    [[nodiscard]] Link link(int k) const;
+};
+
+/// Result of a multi-phase solve: one Solution per phase (states, controls, costates, times,
+/// the phase's own violations and re-simulation; status and iterations those of the whole
+/// NLP; objective the phase's own Mayer + Lagrange part) and the totals.
+struct MultiPhaseSolution {
+    std::vector<Solution> phases;
+    SolveStatus status = SolveStatus::failed;  ///< solved_unresolved when any phase is
+    int ipopt_status = 0;
+    std::string status_text;
+    int iterations = 0;
+    double cpu_time = 0.0;
+    double wall_time = 0.0;
+    double objective = 0.0;      ///< sum over phases, the user's sign
+    Eigen::VectorXd parameters;  ///< the shared static parameters
+    /// Values of each link's rows: t0_{k+1} - tf_k (unless both are fixed), the linkage function
+    /// (continuity: x_{k+1}(t0) - x_k(tf) of each state not fixed on both sides), then
+    /// p^{k+1} - p^0 per parameter.
+    std::vector<Eigen::VectorXd> links;
+    double max_violation = 0.0;       ///< largest unscaled violation, all rows
+    double max_link_violation = 0.0;  ///< largest unscaled violation of the linkage rows
+    int n_variables = 0;
+    int n_constraints = 0;
+    int n_jacobian_nonzeros = 0;
+    int n_hessian_nonzeros = 0;
+
+    [[nodiscard]] bool converged() const {
+        return status == SolveStatus::solved || status == SolveStatus::solved_acceptable ||
+               status == SolveStatus::solved_unresolved;
+    }
+    [[nodiscard]] bool resolved() const {
+        return status == SolveStatus::solved || status == SolveStatus::solved_acceptable;
+    }
+    [[nodiscard]] const Solution& phase(int k) const {
+        return phases.at(static_cast<std::size_t>(k));
+    }
+    /// Largest re-simulation error (scaled) over the phases (each phase from its own x(t0)).
+    [[nodiscard]] double max_resimulation_error() const;
+};
+
+/// Solve the multi-phase problem (never throws on solver failure; InputError for bad input).
+[[nodiscard]] MultiPhaseSolution solve(const MultiPhaseProblem& problem,
+                                       const SolverOptions& options = {});
+
+/// Derivative check of the multi-phase NLP (as check_derivatives of one phase, solve.hpp).
+[[nodiscard]] DerivativeCheck check_derivatives(const MultiPhaseProblem& problem,
+                                                double perturbation = 0.01, unsigned seed = 1);
+
+/// One line per phase (t0, tf, objective part, x(t0), x(tf)) after the status and objective.
+[[nodiscard]] std::string summary(const MultiPhaseSolution& solution);
+
+}  // namespace manta::optimal
