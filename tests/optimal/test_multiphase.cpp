@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <span>
 #include <string>
@@ -361,6 +362,41 @@ TEST(MultiPhase, SinglePhaseProblemAsOnePhase) {
     EXPECT_EQ(one.objective, multi.objective);
     EXPECT_EQ(one.iterations, multi.iterations);
     EXPECT_NEAR(one.objective, 6.0, 1e-9);
+}
+
+/// A leg with an interior event (solve_adaptive rejects it in a multi-phase problem).
+struct WithEvent : BangLeg {
+    [[nodiscard]] ProblemInfo info() const {
+        ProblemInfo p = BangLeg::info();
+        p.interior_events = {{{"x", -kInf, kInf, 1.0}, 1}};
+        return p;
+    }
+    template <class T>
+    void interior(int, std::span<const T> x, std::span<const T>, const T&, std::span<T> e) const {
+        e[0] = x[0];
+    }
+};
+
+TEST(MultiPhase, AdaptiveRefinementPerPhase) {
+    // there and back from one 6-point segment per phase, fixed breaks: the refinement cuts each
+    // phase at its switch (free breaks) and reaches t_f = 4
+    MultiPhaseProblem mp = there_and_back();
+    for (auto& ph : mp.phases) ph.mesh = Mesh::uniform(1, 6);
+    const MultiPhaseAdaptiveSolution a = solve_adaptive(mp);
+    const std::string report = refinement_report(a);
+    std::printf("%s", report.c_str());
+    ASSERT_EQ(a.status, RefinementStatus::tolerance_met) << report;
+    EXPECT_NEAR(a.solution.objective, 4.0, 1e-6);
+    EXPECT_NEAR(a.solution.phase(0).final_time, 2.0, 1e-6);
+    EXPECT_GE(a.meshes[0].n_segments(), 2);
+    EXPECT_GE(a.meshes[1].n_segments(), 2);
+    // interior events are not remapped across phases: rejected
+    MultiPhaseProblem bad = mp;
+    WithEvent w;
+    w.name = "out";
+    bad.phases[0].model = make_model(w);
+    bad.phases[0].mesh = Mesh::uniform(2, 6);
+    EXPECT_THROW((void)solve_adaptive(bad), manta::InputError);
 }
 
 std::string error_of(const MultiPhaseProblem& mp) {

@@ -210,3 +210,46 @@ struct MultiPhaseSolution {
 [[nodiscard]] std::string summary(const MultiPhaseSolution& solution);
 
 }  // namespace manta::optimal
+
+#include "manta/optimal/refine.hpp"
+
+namespace manta::optimal {
+
+/// One solve of the multi-phase `solve_adaptive`.
+struct MultiPhasePass {
+    int pass = 0;                                     ///< 1 for the user's meshes
+    std::vector<Mesh> meshes;                         ///< per phase, as solved
+    std::vector<std::vector<double>> segment_errors;  ///< per phase, per segment
+    double max_error = 0.0;                           ///< over all phases' segments
+    int iterations = 0;
+    double cpu_s = 0.0;
+    SolveStatus status = SolveStatus::failed;
+    double objective = 0.0;
+    int total_nodes = 0;  ///< LGL points of all phases
+};
+
+/// Result of the multi-phase `solve_adaptive`.
+struct MultiPhaseAdaptiveSolution {
+    MultiPhaseSolution solution;  ///< the last converged solution (else the last one)
+    std::vector<Mesh> meshes;     ///< its meshes, per phase
+    std::vector<MultiPhasePass> passes;
+    RefinementStatus status = RefinementStatus::solve_failed;
+    std::string status_text;
+};
+
+/// Error-driven refinement of every phase's mesh (the single-phase rule of refine.hpp applied
+/// per phase: segment_errors and refine_mesh on each phase's solution), all phases solved
+/// together in each pass from the previous pass's solution, until every phase meets the
+/// tolerance with its mesh unchanged by refine_mesh, or max_passes, or max_total_nodes (all
+/// phases), or a failed solve (no retry with higher-degree pieces, unlike the single-phase
+/// solve_adaptive). Phases with interior events are rejected (InputError): their junction
+/// indices are not remapped here.
+[[nodiscard]] MultiPhaseAdaptiveSolution solve_adaptive(const MultiPhaseProblem& problem,
+                                                        const SolverOptions& solver_options = {},
+                                                        const RefinementOptions& refinement = {});
+
+/// The passes as a table (pass, points per phase, max error, IPOPT iterations, CPU, status,
+/// objective) and the stop reason.
+[[nodiscard]] std::string refinement_report(const MultiPhaseAdaptiveSolution& result);
+
+}  // namespace manta::optimal
