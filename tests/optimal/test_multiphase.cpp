@@ -127,6 +127,8 @@ MultiPhaseProblem kicked(double dv, bool energy_state, int nodes) {
 TEST(MultiPhase, LinkageJumpMatchesTheAnalyticOptimum) {
     const double dv = 1.0, a = 6.0 - dv, b = -12.0;
     const MultiPhaseSolution s = solve(kicked(dv, false, 6));
+    std::printf("kick: J %.12f (6.5), %d IPOPT iterations, %.3f s CPU, resim %.1e\n", s.objective,
+                s.iterations, s.cpu_time, s.max_resimulation_error());
     ASSERT_TRUE(s.resolved()) << s.status_text;
     EXPECT_NEAR(s.objective, 0.5 * (a * a + a * b + b * b / 3.0), 1e-9);       // 6.5
     EXPECT_NEAR(s.phase(0).final_state("v"), a / 2.0 + b / 8.0, 1e-9);         // 1 before the kick
@@ -149,6 +151,8 @@ TEST(MultiPhase, PhasesWithDifferentStatesAndObjectives) {
     // the second phase carries its energy as a third state and a Mayer cost: same optimum
     const double dv = 1.0, a = 6.0 - dv, b = -12.0;
     const MultiPhaseSolution s = solve(kicked(dv, true, 6));
+    std::printf("kick, 2 and 3 states: J %.12f (6.5), %d IPOPT iterations\n", s.objective,
+                s.iterations);
     ASSERT_TRUE(s.resolved()) << s.status_text;
     EXPECT_NEAR(s.objective, 0.5 * (a * a + a * b + b * b / 3.0), 1e-9);
     EXPECT_EQ(s.phase(0).info.n_states(), 2);
@@ -229,6 +233,8 @@ MultiPhaseProblem there_and_back() {
 
 TEST(MultiPhase, FreePhaseTimesWithDefaultLinks) {
     const MultiPhaseSolution s = solve(there_and_back());
+    std::printf("there and back: t_f %.9f (4), turn %.9f (2), %d IPOPT iterations, %.3f s CPU\n",
+                s.objective, s.phase(0).final_time, s.iterations, s.cpu_time);
     ASSERT_TRUE(s.resolved()) << s.status_text;
     EXPECT_NEAR(s.objective, 4.0, 1e-6);
     EXPECT_NEAR(s.phase(0).final_time, 2.0, 1e-6);
@@ -305,6 +311,8 @@ MultiPhaseProblem shared_parameter() {
 
 TEST(MultiPhase, StaticParametersAreShared) {
     const MultiPhaseSolution s = solve(shared_parameter());
+    std::printf("shared parameter: p %.12f (24/13), J %.12f (585/338), %d IPOPT iterations\n",
+                s.parameters(0), s.objective, s.iterations);
     ASSERT_TRUE(s.resolved()) << s.status_text;
     EXPECT_NEAR(s.parameters(0), 24.0 / 13.0, 1e-9);
     EXPECT_NEAR(s.phase(1).parameter("p"), 24.0 / 13.0, 1e-9);
@@ -336,6 +344,8 @@ TEST(MultiPhase, DerivativesOfTheMultiPhaseNlp) {
             l[1] = x0[1] * xf[0] - xf[1] * xf[1] * x0[0] + (p.empty() ? 0.0 * xf[0] : p[0]);
         });
     const DerivativeCheck n = check_derivatives(mp);
+    std::printf("derivative check, nonlinear linkage: gradient %.1e, Jacobian %.1e, Hessian %.1e\n",
+                n.gradient_error, n.jacobian_error, n.hessian_error);
     EXPECT_LT(n.jacobian_error, 2e-6) << n.worst_row << " " << n.worst_col;
     EXPECT_LT(n.hessian_error, 2e-6);
 }
