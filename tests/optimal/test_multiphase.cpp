@@ -141,6 +141,13 @@ TEST(MultiPhase, LinkageJumpMatchesTheAnalyticOptimum) {
     EXPECT_LT(s.max_resimulation_error(), 1e-6);
     // costates continuous across the kick (a translation of the state)
     EXPECT_NEAR(s.phase(0).costate(0.5)(1), s.phase(1).costate(0.5)(1), 1e-6);
+    // the same with IPOPT's limited-memory Hessian (first derivatives only)
+    SolverOptions lbfgs;
+    lbfgs.hessian = HessianMode::limited_memory;
+    const MultiPhaseSolution q = solve(kicked(dv, false, 6), lbfgs);
+    ASSERT_TRUE(q.resolved()) << q.status_text;
+    EXPECT_NEAR(q.objective, 6.5, 1e-7);
+    EXPECT_EQ(q.n_hessian_nonzeros, 0);
     // without the kick: the single-phase optimum J = 6
     const MultiPhaseSolution s0 = solve(kicked(0.0, false, 6));
     ASSERT_TRUE(s0.resolved());
