@@ -113,6 +113,18 @@ int run_replay_command(const ReplayArgs& a) {
         e->set_unsteady_start(a.cfd_start == "free-stream" ? euler::UnsteadyStart::free_stream
                                                            : euler::UnsteadyStart::steady);
         source_size = fmt::format("{} nodes", e->n_nodes());
+        // The steady start takes minutes on an aircraft mesh: its own status line.
+        e->set_start_progress([name = tr.meta("manoeuvre", "trajectory"),
+                               tty = isatty(fileno(stderr)) != 0, last = -1e300](
+                                  int it, double drop, double target, double wall_s) mutable {
+            if (wall_s - last < (tty ? 1.0 : 10.0)) return;
+            last = wall_s;
+            std::fprintf(stderr,
+                         "%sreplay %s: steady start, iteration %d, residual %.2f of %.2f orders "
+                         "down, %.0f s%s",
+                         tty ? "\r" : "", name.c_str(), it, drop, target, wall_s,
+                         tty ? "   " : "\n");
+        });
         s.extra_fingerprint =
             "euler start=" + a.cfd_start +
             " cfd_config=" + (a.cfd_config.empty() ? std::string() : core::read_file(a.cfd_config));

@@ -160,6 +160,8 @@ CfdConfig read(const ConfigNode& root) {
         t.extrapolate = u.boolean_or("extrapolate", t.extrapolate);
         t.jacobian_interval = static_cast<int>(u.integer_or(
             "jacobian_interval", t.jacobian_interval, NumberSpec::range(1, 1000, "-")));
+        t.cfl_max = u.number_or("cfl_max", t.cfl_max, NumberSpec::non_negative("-"));
+        t.cfl_growth = u.number_or("cfl_growth", t.cfl_growth, NumberSpec::non_negative("-"));
         c.output_every = static_cast<int>(
             u.integer_or("output_every", c.output_every, NumberSpec::range(0, 1e9, "steps")));
         c.mesh_motion = u.choice_or("mesh_motion", "rigid", {"rigid", "deforming"}) == "deforming"

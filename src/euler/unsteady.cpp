@@ -24,6 +24,8 @@ CaseSetup inner_setup(CaseSetup s, const UnsteadySettings& t) {
     s.solver.max_iterations = t.max_inner;
     s.solver.residual_drop = t.inner_drop;
     s.solver.first_order_iterations = 0;
+    if (t.cfl_max > 0.0) s.solver.cfl_max = t.cfl_max;
+    if (t.cfl_growth > 0.0) s.solver.cfl_growth = t.cfl_growth;
     return s;
 }
 
@@ -46,6 +48,10 @@ void UnsteadySettings::validate() const {
     need(coefficient_window >= 2, "coefficient_window", coefficient_window, "an integer >= 2");
     need(coefficient_tolerance > 0, "coefficient_tolerance", coefficient_tolerance, "a number > 0");
     need(jacobian_interval >= 1, "jacobian_interval", jacobian_interval, "an integer >= 1");
+    need(cfl_max == 0.0 || (cfl_max >= 0.1 && cfl_max <= 1e12), "cfl_max", cfl_max,
+         "0 (the solver's) or 0.1 .. 1e12");
+    need(cfl_growth == 0.0 || (cfl_growth >= 1.0 && cfl_growth <= 100.0), "cfl_growth", cfl_growth,
+         "0 (the solver's) or 1 .. 100");
 }
 
 UnsteadySolver::UnsteadySolver(const Domain& domain, const parallel::Communicator& comm,

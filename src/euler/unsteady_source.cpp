@@ -91,6 +91,9 @@ public:
             source.fingerprint_, st_.fingerprint, core::format_exact(setup_.flow.mach),
             start_ == UnsteadyStart::steady ? "steady" : "free_stream", t.order, t.max_inner,
             t.inner_drop, t.coefficient_window, t.coefficient_tolerance);
+        // Only when set: the saved runs of earlier versions keep their fingerprint.
+        if (t.cfl_max > 0.0) fingerprint_ += fmt::format(" cfl_max={}", t.cfl_max);
+        if (t.cfl_growth > 0.0) fingerprint_ += fmt::format(" cfl_growth={}", t.cfl_growth);
         mesh_motion_text_ = mesh_motion_words(options);
         fingerprint_ += mesh_motion_key + mesh_motion_text_;
     }
@@ -107,6 +110,8 @@ public:
                 solver_->steps() + 1, st_.n_steps, st_.dt, motion_.t.back()));
         const TimeStepRecord rec = solver_->advance();
         sample_ = sample(solver_->steps(), rec.forces);
+        sample_.iterations = rec.inner_iterations;
+        sample_.converged = rec.converged;
         return sample_;
     }
     [[nodiscard]] bool finished() const override { return solver_->steps() >= st_.n_steps; }
@@ -236,8 +241,9 @@ private:
     /// The start, once (lazily: a run restored from a file never computes it).
     void start() const {
         if (started_) return;
-        if (start_ == UnsteadyStart::steady) steady_start();
+        const int iterations = start_ == UnsteadyStart::steady ? steady_start() : 0;
         sample_ = sample(0, solver_->forces());
+        sample_.iterations = iterations;
         started_ = true;
     }
 
@@ -247,7 +253,8 @@ private:
     /// at t0 are left out). Warm-started from the source's nearest converged steady solution,
     /// turned with the mesh. Then Galilean-shifted back into the flow frame, whose free stream is
     /// the unsteady solver's.
-    void steady_start() const {
+    /// Returns the steady solution's iterations.
+    int steady_start() const {
         const double t0 = step_time(0);
         const aero::MotionState ms = motion_.at(t0);
         const meshmotion::RigidPose pose =
@@ -298,7 +305,17 @@ private:
                 steady.warm_start(U, best->peak_log10_residual);
             }
         }
-        const SolveOutcome oc = steady.solve();
+        SteadySolver::Monitor monitor;
+        if (src_.start_progress_) {
+            const double target = s.solver.residual_drop;
+            double peak = -std::numeric_limits<double>::infinity();
+            monitor = [this, target, peak](const IterationRecord& r) mutable {
+                peak = std::max(peak, r.log10_residual[0]);
+                src_.start_progress_(r.iteration, peak - r.log10_residual[0], target, r.wall_s);
+                return true;
+            };
+        }
+        const SolveOutcome oc = steady.solve(monitor);
         if (!oc.converged)
             throw ConvergenceError(fmt::format(
                 "euler source: the steady start at t = {} s (M {:g}, alpha {:.4g} deg, beta "
@@ -317,6 +334,7 @@ private:
                 U.block<3, 1>(1, i) = m + rho * vg;
             }
         solver_->set_state(U);
+        return oc.iterations;
     }
 
     const EulerSource& src_;

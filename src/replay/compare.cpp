@@ -108,7 +108,11 @@ std::string comparison_csv(const std::vector<ComparisonRow>& rows) {
         "t,phase,alpha,beta,V,mach,p,q,r,elevator,aileron,rudder,elevator_rate,aileron_rate,"
         "rudder_rate";
     for (const char* c : coefficient_names) s += fmt::format(",{0}_replay,{0}_table,{0}_diff", c);
-    s += ",flag\n";
+    // An iterative source's iterations per step (the Euler source's inner iterations).
+    const bool iterative = std::any_of(rows.begin(), rows.end(), [](const ComparisonRow& r) {
+        return r.source_iterations > 0 || !r.source_converged;
+    });
+    s += iterative ? ",flag,source_iterations,source_converged\n" : ",flag\n";
     auto x = [](double v) { return core::format_exact(v); };
     for (const ComparisonRow& r : rows) {
         s += fmt::format("{},{},{},{},{},{}", x(r.t), r.phase, x(r.alpha), x(r.beta), x(r.V),
@@ -120,7 +124,9 @@ std::string comparison_csv(const std::vector<ComparisonRow>& rows) {
             }
         for (std::size_t k = 0; k < 6; ++k)
             s += fmt::format(",{},{},{}", x(r.replay[k]), x(r.table[k]), x(r.diff[k]));
-        s += r.flag ? ",1\n" : ",0\n";
+        s += r.flag ? ",1" : ",0";
+        if (iterative) s += fmt::format(",{},{}", r.source_iterations, r.source_converged ? 1 : 0);
+        s += '\n';
     }
     return s;
 }
@@ -175,6 +181,35 @@ nlohmann::json summarise(const std::vector<ComparisonRow>& rows, const std::vect
         pj.push_back(o);
     }
     j["phases"] = pj;
+    // An iterative source's effort: the start's iterations (row 0) and those of the steps.
+    const bool iterative = std::any_of(rows.begin(), rows.end(), [](const ComparisonRow& r) {
+        return r.source_iterations > 0 || !r.source_converged;
+    });
+    if (iterative) {
+        long total = 0;
+        int most = 0, unconverged = 0;
+        double t_most = rows.front().t;
+        for (std::size_t i = 1; i < rows.size(); ++i) {
+            total += rows[i].source_iterations;
+            if (rows[i].source_iterations > most) {
+                most = rows[i].source_iterations;
+                t_most = rows[i].t;
+            }
+            if (!rows[i].source_converged) ++unconverged;
+        }
+        const auto steps = static_cast<long>(rows.size()) - 1;
+        j["source_iterations"] = {
+            {"start", rows.front().source_iterations},
+            {"start_converged", rows.front().source_converged},
+            {"steps", steps},
+            {"total", total},
+            {"mean_per_step", steps > 0 ? static_cast<double>(total) / steps : 0.0},
+            {"max", most},
+            {"t_max", t_most},
+            {"unconverged_steps", unconverged}};
+    } else {
+        j["source_iterations"] = nullptr;
+    }
     // Mean difference of each coefficient over the replay: a flag of a coefficient whose mean
     // difference exceeds half its tolerance is (also) a systematic source-table offset.
     std::array<double, 6> mean_diff{};

@@ -69,7 +69,7 @@ std::string fingerprint(const aero::AeroSource& source, const aero::AeroDatabase
 }
 
 /// Doubles per row in the checkpoint's row file.
-constexpr std::size_t row_doubles = 35;
+constexpr std::size_t row_doubles = 37;
 
 std::string rows_to_bytes(const std::vector<ComparisonRow>& rows) {
     std::vector<double> v;
@@ -80,7 +80,9 @@ std::string rows_to_bytes(const std::vector<ComparisonRow>& rows) {
         v.insert(v.end(), r.controls.begin(), r.controls.end());
         v.insert(v.end(), r.control_rates.begin(), r.control_rates.end());
         for (std::size_t k = 0; k < 6; ++k) v.insert(v.end(), {r.replay[k], r.table[k], r.diff[k]});
-        v.insert(v.end(), {r.flag ? 1.0 : 0.0, r.extrapolated ? 1.0 : 0.0});
+        v.insert(v.end(),
+                 {r.flag ? 1.0 : 0.0, r.extrapolated ? 1.0 : 0.0,
+                  static_cast<double>(r.source_iterations), r.source_converged ? 1.0 : 0.0});
     }
     return {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double)};
 }
@@ -114,6 +116,8 @@ std::vector<ComparisonRow> rows_from_bytes(const std::string& b, const fs::path&
         }
         r.flag = x[33] != 0.0;
         r.extrapolated = x[34] != 0.0;
+        r.source_iterations = static_cast<int>(x[35]);
+        r.source_converged = x[36] != 0.0;
     }
     return rows;
 }
@@ -255,6 +259,8 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
         r.phase = row_phase[row];
         r.alpha = smp.alpha;
         r.beta = smp.beta;
+        r.source_iterations = smp.iterations;
+        r.source_converged = smp.converged;
         r.V = smp.airspeed;
         r.mach = ts.modes[6];
         for (std::size_t k = 0; k < 3; ++k) {

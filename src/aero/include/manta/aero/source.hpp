@@ -52,6 +52,11 @@ struct UnsteadySample {
     double alpha = 0.0;                  ///< of the reference point's air-relative velocity [rad]
     double beta = 0.0;                   ///< [rad]
     double airspeed = 0.0;  ///< of the reference point [m/s]; coefficients on rho airspeed^2 / 2
+    /// Iterations an iterative source spent on this sample (the inner iterations of a step; for
+    /// the start, those of its steady solution), and whether they met the source's stopping
+    /// rule. 0 and true for a source solved directly (the vortex lattice).
+    int iterations = 0;
+    bool converged = true;
 };
 
 /// Settings of an unsteady run that the motion does not carry.

@@ -109,6 +109,12 @@ public:
         unsteady_inner_ = inner;
     }
     void set_unsteady_start(UnsteadyStart s) { unsteady_start_ = s; }
+    /// Progress of an unsteady run's steady start (minutes on an aircraft mesh): called after
+    /// each of its iterations with the iteration, the residual's drop below its peak [orders],
+    /// the drop it must reach and the wall time since the start's beginning [s].
+    using StartProgress =
+        std::function<void(int iteration, double drop, double target_drop, double wall_s)>;
+    void set_start_progress(StartProgress p) { start_progress_ = std::move(p); }
     /// The configuration's `unsteady.mesh_motion`, `unsteady.rigid_radius` and
     /// `unsteady.fixed_radius` [m] (0: meshmotion::DeformationOptions' defaults), for
     /// `start_unsteady` (`from_files` sets them; rigid otherwise). As `manta cfd --motion`: in the
@@ -157,6 +163,7 @@ private:
     meshmotion::BodyMotion unsteady_body_ = meshmotion::BodyMotion::rigid;
     double unsteady_rigid_radius_ = 0.0, unsteady_fixed_radius_ = 0.0;  ///< [m]
     std::size_t cache_size_ = 16;
+    StartProgress start_progress_;
     mutable std::mutex mutex_;
     mutable std::vector<Cached> cache_;
     mutable EulerSourceStats stats_;

@@ -47,6 +47,12 @@ struct UnsteadySettings {
     /// Assemble the Jacobian and the preconditioner at every k-th inner iteration of a step (the
     /// first included) and reuse them in between; 1: every inner iteration.
     int jacobian_interval = 3;
+    /// The inner iterations' largest CFL number and its growth per iteration; 0: the steady
+    /// solver's (`solver.cfl_max`, `solver.cfl_growth`). A step's inner iterations correct a
+    /// state already near the new one, so they bear larger pseudo-time steps than a steady solve
+    /// from the free stream, whose cap a configuration may have lowered for that start.
+    double cfl_max = 0.0;
+    double cfl_growth = 0.0;
     /// InputError naming the setting for a value out of range.
     void validate() const;
 };

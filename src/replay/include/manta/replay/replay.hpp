@@ -111,6 +111,9 @@ struct ComparisonRow {
     std::array<double, 6> replay{}, table{}, diff{};
     bool flag = false;
     bool extrapolated = false;  ///< the table query left the table's range
+    /// The source's iterations on this step and whether they converged (UnsteadySample).
+    int source_iterations = 0;
+    bool source_converged = true;
 };
 
 /// A phase of the manoeuvre: [t_start, t_end] and its name.
