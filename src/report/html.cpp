@@ -418,7 +418,10 @@ std::optional<std::array<double, 2>> replay_gap(const Columns& a, const Columns&
         const double w = tb.size() > 1 && tb[j + 1] > tb[j]
                              ? std::clamp((ta[i] - tb[j]) / (tb[j + 1] - tb[j]), 0.0, 1.0)
                              : 0.0;
-        const double v = tb.size() > 1 ? yb[j] + w * (yb[j + 1] - yb[j]) : yb[0];
+        const double v = tb.size() == 1 ? yb[0]
+                         : w <= 0.0     ? yb[j]
+                         : w >= 1.0     ? yb[j + 1]
+                                        : yb[j] + w * (yb[j + 1] - yb[j]);
         const double d = ya[i] - v;
         sum += d * d;
         mx = std::max(mx, std::abs(d));
