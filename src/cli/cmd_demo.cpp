@@ -389,7 +389,8 @@ void add_demo(CLI::App& app, Action& action) {
             const Markers markers{out / ".demo"};
             if (o->restart) {
                 markers.clear();
-                for (const char* d : {"tables", "fly", "manoeuvres", "replay", "figures"}) {
+                for (const char* d :
+                     {"tables", "fly", "manoeuvres", "replay", "replay-vlm", "figures"}) {
                     std::error_code ec;
                     fs::remove_all(out / d, ec);
                 }
@@ -704,11 +705,39 @@ void add_demo(CLI::App& app, Action& action) {
                 }
                 if (markers.done("replay_" + name, args, dir / "summary.json")) {
                     say(fmt::format("      replay {}: already done (kept)", name));
+                } else {
+                    rep_jobs.push_back(
+                        {"replay " + name, args, out / "logs" / ("replay_" + name + ".log")});
+                    rep_names.push_back(name);
+                }
+                if (!euler) continue;
+                // The Euler demo also replays each manoeuvre through the unsteady vortex lattice
+                // (seconds), into replay-vlm/<name>/: the report draws the Euler replay, the
+                // tables and the lattice replay on the same axes (docs/report.md).
+                const fs::path vdir = out / "replay-vlm" / name;
+                std::vector<std::string> vargs{
+                    "replay",
+                    "--trajectory",
+                    (out / "manoeuvres" / name / "trajectory_dense.csv").string(),
+                    "--source",
+                    "vlm",
+                    "--aircraft",
+                    (inputs / "aircraft.yaml").string(),
+                    "--tables",
+                    database.string(),
+                    "--out",
+                    vdir.string(),
+                    "--threads",
+                    "1"};
+                if (replay_until > 0.0)
+                    vargs.insert(vargs.end(), {"--until", fmt::format("{}", replay_until)});
+                if (markers.done("replay_vlm_" + name, vargs, vdir / "summary.json")) {
+                    say(fmt::format("      lattice replay {}: already done (kept)", name));
                     continue;
                 }
-                rep_jobs.push_back(
-                    {"replay " + name, args, out / "logs" / ("replay_" + name + ".log")});
-                rep_names.push_back(name);
+                rep_jobs.push_back({"lattice replay " + name, vargs,
+                                    out / "logs" / ("replay_vlm_" + name + ".log")});
+                rep_names.push_back("vlm_" + name);
             }
             {
                 const auto res = run_children(program, rep_jobs, rco);

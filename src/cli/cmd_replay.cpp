@@ -22,6 +22,7 @@
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
 #include "manta/euler/source.hpp"
+#include "manta/euler/surface_snapshot.hpp"
 #include "manta/replay/replay.hpp"
 #include "manta/replay/trajectory.hpp"
 #include "manta/vlm/source.hpp"
@@ -40,7 +41,9 @@ struct ReplayArgs {
     std::string trajectory, source = "vlm", aircraft, out, tables;
     std::string mesh, cfd_config, cfd_start = "steady";  // --source euler
     double dt = 0.0;
-    double until = 0.0;  // 0: the whole trajectory
+    double until = 0.0;           // 0: the whole trajectory
+    double snapshot_every = 1.0;  // --source euler: surface snapshots [s of flight]; 0: none
+    bool snapshot_given = false;
     int n_chord = replay_n_chord;
     double strip_width = replay_strip_width;
     double wake_length = 10.0;
@@ -62,6 +65,11 @@ int run_replay_command(const ReplayArgs& a) {
             "--mesh, --cfd-config and --cfd-start are options of --source euler; expected them "
             "with it, or "
             "neither with --source {}",
+            a.source));
+    if (!euler && a.snapshot_given)
+        throw InputError(fmt::format(
+            "--snapshot-every is an option of --source euler (the vortex lattice has no surface "
+            "to write); expected it with --source euler, or not with --source {}",
             a.source));
     const aircraft::AircraftDefinition def = aircraft::load_aircraft(a.aircraft);
     const auto tables = load_tables(a.tables, def);
@@ -125,6 +133,10 @@ int run_replay_command(const ReplayArgs& a) {
                          tty ? "\r" : "", name.c_str(), it, drop, target, wall_s,
                          tty ? "   " : "\n");
         });
+        s.snapshot_every = a.snapshot_every;
+        s.write_snapshot = [](const aero::UnsteadyRun& run, const fs::path& file) {
+            return euler::write_surface_snapshot(run, file);
+        };
         s.extra_fingerprint =
             "euler start=" + a.cfd_start +
             " cfd_config=" + (a.cfd_config.empty() ? std::string() : core::read_file(a.cfd_config));
@@ -195,6 +207,10 @@ int run_replay_command(const ReplayArgs& a) {
                j.value("flagged_steps", 0));
     fmt::print("wrote {}, {}, {}\n", oc.motion_file.string(), oc.comparison_file.string(),
                oc.summary_file.string());
+    if (oc.snapshots > 0)
+        fmt::print("wrote {} surface snapshot(s) every {} s in {} ({:.2f} s to write here)\n",
+                   oc.snapshots, a.snapshot_every, (fs::path(a.out) / "surface").string(),
+                   j["snapshots"].value("write_wall_s", 0.0));
     return 0;
 }
 
@@ -241,6 +257,12 @@ void add_replay(CLI::App& app, Action& action) {
                     "Replay only the first S seconds of flight: the trajectory cut there, as if "
                     "the file ended (default: the whole trajectory)")
         ->check(real_positive(1e6, "s"));
+    cmd->add_option("--snapshot-every", a->snapshot_every,
+                    "--source euler: write the wall's surface (x y z Cp, triangles) every S "
+                    "seconds of flight into --out/surface/ (docs/formats.md#surface-snapshot; "
+                    "default 1; 0: none)")
+        ->check(real_in(0.0, 1e6, "s"))
+        ->each([a](const std::string&) { a->snapshot_given = true; });
     cmd->add_option("--n-chord", a->n_chord,
                     fmt::format("vlm: chordwise vortices per strip (default {})", replay_n_chord))
         ->check(integer_in(1, 100));

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -23,6 +24,7 @@
 #include "manta/euler/deflection.hpp"
 #include "manta/euler/gas.hpp"
 #include "manta/euler/source.hpp"
+#include "manta/euler/surface_snapshot.hpp"
 #include "manta/euler/unsteady.hpp"
 
 namespace manta::euler {
@@ -48,7 +50,16 @@ std::string mesh_motion_words(const meshmotion::DeformationOptions& o) {
 
 }  // namespace
 
-class EulerSource::Run final : public aero::UnsteadyRun {
+namespace detail {
+/// What `write_surface_snapshot` finds a run by (the run class itself is private to the source).
+class WallSnapshotWriter {
+public:
+    virtual ~WallSnapshotWriter() = default;
+    virtual void write_surface(const std::filesystem::path& file) const = 0;
+};
+}  // namespace detail
+
+class EulerSource::Run final : public aero::UnsteadyRun, public detail::WallSnapshotWriter {
 public:
     Run(const EulerSource& source, const aero::Motion& motion,
         const aero::UnsteadySettings& settings)
@@ -222,6 +233,38 @@ public:
         started_ = true;
     }
 
+    /// The wall at the current instant (surface_snapshot.hpp): Cp of the state on
+    /// rho airspeed^2 / 2 (the solver's is on the entry speed's); the wall's geometry (the
+    /// source's mesh at rest) beside it once.
+    void write_surface(const std::filesystem::path& file) const override {
+        start();
+        if (!wall_) wall_ = wall_surface(src_.mesh_, setup_.roles, file.string());
+        const std::filesystem::path geometry = file.parent_path() / "wall.csv";
+        if (!std::filesystem::exists(geometry))
+            write_wall_geometry(geometry, src_.mesh_, *wall_,
+                                {{"coordinates", "the mesh at rest (geometry axes) [m]"}});
+        const aero::UnsteadySample& s = sample_;
+        std::vector<double> cp = pressure_coefficient(solver_->state(), setup_);
+        const double q = (st_.v0 / s.airspeed) * (st_.v0 / s.airspeed);
+        for (double& c : cp) c *= q;
+        const aero::MotionState ms = motion_.at(s.t);
+        std::vector<std::pair<std::string, std::string>> header{
+            {"wall", "wall.csv"},
+            {"t", core::format_exact(s.t)},
+            {"step", std::to_string(s.index)},
+            {"mach", core::format_exact(setup_.flow.mach)},
+            {"airspeed", core::format_exact(s.airspeed)},
+            {"alpha", core::format_exact(s.alpha)},
+            {"beta", core::format_exact(s.beta)}};
+        for (const char* m : mode_names) {
+            const int k = motion_.find_mode(m);
+            header.emplace_back(
+                m, core::format_exact(k >= 0 ? ms.modes[static_cast<std::size_t>(k)] : 0.0));
+        }
+        header.emplace_back("cp_reference", "rho airspeed^2 / 2");
+        write_wall_cp(file, *wall_, cp, header);
+    }
+
 private:
     [[nodiscard]] double step_time(long step) const { return motion_.t.front() + step * st_.dt; }
 
@@ -352,7 +395,15 @@ private:
     std::string mesh_motion_text_;  ///< the mesh motion in words (the fingerprint's last part)
     mutable bool started_ = false;
     mutable aero::UnsteadySample sample_;
+    mutable std::optional<WallSurface> wall_;  ///< the wall of the snapshots, once
 };
+
+bool write_surface_snapshot(const aero::UnsteadyRun& run, const std::filesystem::path& file) {
+    const auto* r = dynamic_cast<const detail::WallSnapshotWriter*>(&run);
+    if (!r) return false;
+    r->write_surface(file);
+    return true;
+}
 
 std::unique_ptr<aero::UnsteadyRun> EulerSource::start_unsteady(
     const aero::Motion& motion, const aero::UnsteadySettings& settings) const {

@@ -65,6 +65,8 @@ std::string fingerprint(const aero::AeroSource& source, const aero::AeroDatabase
     h.num(s.viscous ? 1.0 : 0.0);
     for (const double t : s.tolerances) h.num(t);
     h.str(s.extra_fingerprint);
+    // Snapshots: a resumed run must write those of the uninterrupted one.
+    if (s.snapshot_every > 0.0 && s.write_snapshot) h.num(s.snapshot_every);
     return fmt::format("{:016x}", h.h);
 }
 
@@ -128,6 +130,16 @@ double cpu_seconds() {
 
 }  // namespace
 
+std::vector<int> snapshot_steps(int n_steps, double dt, double every) {
+    std::vector<int> out;
+    if (!(every > 0.0) || !(dt > 0.0) || n_steps < 0) return out;
+    auto slot = [&](int k) { return std::floor(k * dt / every + 1e-9); };
+    out.push_back(0);
+    for (int k = 1; k <= n_steps; ++k)
+        if (slot(k) > slot(k - 1) || k == n_steps) out.push_back(k);
+    return out;
+}
+
 ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabase& tables,
                          const Trajectory& trajectory, const ReplaySettings& s,
                          const fs::path& out) {
@@ -146,6 +158,10 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
         if (!(s.tolerances[k] > 0.0 && std::isfinite(s.tolerances[k])))
             throw InputError(fmt::format("replay: tolerance of {} is {}; expected > 0",
                                          coefficient_names[k], s.tolerances[k]));
+    if (s.snapshot_every < 0.0 || !std::isfinite(s.snapshot_every))
+        throw InputError(fmt::format(
+            "replay: snapshot every {} s; expected a time > 0 s, or 0 for no surface snapshots",
+            s.snapshot_every));
     if (s.until < 0.0 || !std::isfinite(s.until))
         throw InputError(fmt::format(
             "replay: until {} s; expected a duration > 0 s, or 0 for the whole trajectory",
@@ -229,6 +245,27 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
         }
     }
     fs::create_directories(out);
+    // Surface snapshots: a fresh run replaces those of an earlier one; a resumed run keeps those
+    // up to its checkpoint and writes the rest.
+    const fs::path surface = out / "surface";
+    const std::vector<int> snap_steps = s.write_snapshot
+                                            ? snapshot_steps(n_steps, choice.dt, s.snapshot_every)
+                                            : std::vector<int>{};
+    std::vector<char> snap_at(static_cast<std::size_t>(n_steps) + 1, 0);
+    for (const int k : snap_steps) snap_at[static_cast<std::size_t>(k)] = 1;
+    if (oc.resumed_from < 0) fs::remove_all(surface);
+    bool snapshots_ok = !snap_steps.empty();
+    double snapshot_wall = 0.0;
+    int snapshots_here = 0;
+    auto snapshot_file = [](int step) { return fmt::format("step-{:06d}.csv", step); };
+    auto take_snapshot = [&](int step) {
+        if (!snapshots_ok || !snap_at[static_cast<std::size_t>(step)]) return;
+        const auto w0 = clock::now();
+        fs::create_directories(surface);
+        snapshots_ok = s.write_snapshot(*run, surface / snapshot_file(step));
+        snapshot_wall += std::chrono::duration<double>(clock::now() - w0).count();
+        if (snapshots_ok) ++snapshots_here;
+    };
     oc.motion_file = out / "motion.csv";
     aero::write_motion(oc.motion_file, rm.motion);
 
@@ -301,7 +338,10 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
         }
         rows.push_back(r);
     };
-    if (rows.empty()) compare(run->current());
+    if (rows.empty()) {
+        compare(run->current());
+        take_snapshot(0);
+    }
 
     auto elapsed = [&] { return std::chrono::duration<double>(clock::now() - wall0).count(); };
     auto write_checkpoint = [&] {
@@ -331,6 +371,7 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
         compare(run->step());
         ++done_here;
         const int step = run->current().index;
+        take_snapshot(step);
         if (s.progress) {
             ReplayProgress p;
             p.step = step;
@@ -387,6 +428,27 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
     j["resumed_from_step"] =
         oc.resumed_from >= 0 ? nlohmann::json(oc.resumed_from) : nlohmann::json(nullptr);
     j.update(summarise(rows, phases, s.tolerances, rm.mach0, s.chord, s.span));
+    // The snapshots' index (every scheduled step has its file: those before a resume were
+    // written by the run that reached the checkpoint).
+    if (snapshots_ok) {
+        std::string index = "step,t,file\n";
+        oc.snapshots = 0;
+        for (const int k : snap_steps) {
+            if (!fs::exists(surface / snapshot_file(k))) continue;  // removed since
+            ++oc.snapshots;
+            index += fmt::format("{},{},{}\n", k,
+                                 core::format_exact(rows[static_cast<std::size_t>(k)].t),
+                                 snapshot_file(k));
+        }
+        core::write_file_atomic(surface / "index.csv", index);
+        j["snapshots"] = {{"every_s", s.snapshot_every},
+                          {"count", oc.snapshots},
+                          {"index", "surface/index.csv"},
+                          {"written_here", snapshots_here},
+                          {"write_wall_s", snapshot_wall}};
+    } else {
+        j["snapshots"] = nullptr;
+    }
     oc.comparison_file = out / "comparison.csv";
     oc.summary_file = out / "summary.json";
     core::write_file_atomic(oc.comparison_file, comparison_csv(rows));

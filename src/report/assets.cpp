@@ -9,6 +9,8 @@ namespace manta::report::detail {
 const char* const report_css = R"CSS(
 body{font-family:Helvetica,Arial,sans-serif;margin:0;color:#222;background:#f6f6f4;line-height:1.4}
 header{background:#1d3557;color:#fff;padding:14px 28px}
+figure.cp{margin:10px 0 18px 0}figure.cp svg{max-width:100%;height:auto;background:#fff;border:1px solid #ddd}
+figure.cp figcaption{font-size:13px;color:#555}
 header h1{margin:0 0 4px 0;font-size:22px}
 header p{margin:0;font-size:13px;opacity:.9}
 nav{padding:8px 28px;background:#e9ecef;font-size:14px;position:sticky;top:0;z-index:5}

@@ -513,6 +513,49 @@ Figure replay_differences(const ReplayData& r, const std::string& id) {
     return f;
 }
 
+/// The replay, its table and the replays of the other sources (replay-<source>/) on the same
+/// axes, like the paper's Figs. 13-15 (the Euler replay, the Euler table, the lattice replay).
+Figure replay_sources(const ReplayData& r, const std::string& id) {
+    const Columns& c = *r.comparison;
+    Figure f;
+    f.id = id;
+    std::string names = r.label;
+    for (const auto& o : r.others) names += ", " + o.label;
+    f.title = fmt::format("{}: table and replays ({})", r.name, names);
+    const auto shades = replay_shades(r);
+    for (const char* k : coefficient_names) {
+        Panel p;
+        p.title = k;
+        p.x_label = "time [s]";
+        p.y_label = std::string(k) + " [-]";
+        p.series.push_back({"table",
+                            colour_of("table"),
+                            SeriesStyle::line,
+                            c.at("t"),
+                            c.at(std::string(k) + "_table"),
+                            {}});
+        p.series.push_back({r.label + " replay",
+                            colour_of("replay"),
+                            SeriesStyle::line,
+                            c.at("t"),
+                            c.at(std::string(k) + "_replay"),
+                            {}});
+        for (std::size_t i = 0; i < r.others.size(); ++i) {
+            const ReplayData& o = r.others[i];
+            if (!o.comparison) continue;
+            p.series.push_back({o.label + " replay",
+                                colour_of(i == 0 ? "replay_other" : "replay_other2"),
+                                SeriesStyle::dashed,
+                                o.comparison->at("t"),
+                                o.comparison->at(std::string(k) + "_replay"),
+                                {}});
+        }
+        p.shades = shades;
+        f.panels.push_back(std::move(p));
+    }
+    return f;
+}
+
 std::optional<Figure> replay_state(const ReplayData& r, const std::string& id) {
     const Columns& c = *r.comparison;
     Figure f;
@@ -647,6 +690,28 @@ ReportContent build_content(const RunData& run) {
         add(replay_coefficients(r, fmt::format("replay-{}-coefficients", k)), true);
         add(replay_differences(r, fmt::format("replay-{}-differences", k)), true);
         if (auto f = replay_state(r, fmt::format("replay-{}-state", k))) add(std::move(*f), true);
+        if (std::any_of(r.others.begin(), r.others.end(),
+                        [](const ReplayData& o) { return o.comparison.has_value(); }))
+            add(replay_sources(r, fmt::format("replay-{}-sources", k)), true);
+        // Surface Cp at the picked snapshots, one colour range for the replay's pictures.
+        std::vector<const SurfaceSnapshot*> shown;
+        for (const auto& p : r.picks) shown.push_back(&r.snapshots[p.snapshot]);
+        const CpRange range = cp_range(shown);
+        for (std::size_t i = 0; i < r.picks.size(); ++i) {
+            const SnapshotPick& p = r.picks[i];
+            const SurfaceSnapshot& s = r.snapshots[p.snapshot];
+            Picture pic;
+            pic.id = fmt::format("replay-{}-cp-{}", k, i);
+            pic.replay = k;
+            pic.caption = fmt::format("t = {:g} s (step {}, the snapshot nearest {:g} s): {}", s.t,
+                                      s.step, p.t_wanted, p.why);
+            pic.svg = cp_picture_svg(
+                s, range,
+                fmt::format("{}: surface Cp at t = {:g} s{}", r.name, s.t,
+                            p.flag >= 0 ? fmt::format(" (flagged interval {})", p.flag + 1)
+                                        : std::string(" (reference)")));
+            out.pictures.push_back(std::move(pic));
+        }
     }
     return out;
 }

@@ -402,6 +402,111 @@ std::string manoeuvre_section(const ManoeuvreData& m, std::size_t k, const Repor
     return s + "</section>\n";
 }
 
+/// RMS and max of |a - b| for coefficient column `col` of two comparisons, b interpolated
+/// linearly at a's times inside b's range; nullopt when they do not overlap.
+std::optional<std::array<double, 2>> replay_gap(const Columns& a, const Columns& b,
+                                                const std::string& col) {
+    const auto& ta = a.at("t");
+    const auto& tb = b.at("t");
+    const auto& ya = a.at(col);
+    const auto& yb = b.at(col);
+    double sum = 0.0, mx = 0.0;
+    std::size_t n = 0, j = 0;
+    for (std::size_t i = 0; i < ta.size(); ++i) {
+        if (ta[i] < tb.front() - 1e-9 || ta[i] > tb.back() + 1e-9) continue;
+        while (j + 2 < tb.size() && tb[j + 1] < ta[i]) ++j;
+        const double w = tb.size() > 1 && tb[j + 1] > tb[j]
+                             ? std::clamp((ta[i] - tb[j]) / (tb[j + 1] - tb[j]), 0.0, 1.0)
+                             : 0.0;
+        const double v = tb.size() == 1 ? yb[0]
+                         : w <= 0.0     ? yb[j]
+                         : w >= 1.0     ? yb[j + 1]
+                                        : yb[j] + w * (yb[j + 1] - yb[j]);
+        const double d = ya[i] - v;
+        sum += d * d;
+        mx = std::max(mx, std::abs(d));
+        ++n;
+    }
+    if (n == 0) return std::nullopt;
+    return std::array<double, 2>{std::sqrt(sum / static_cast<double>(n)), mx};
+}
+
+/// The replays of other sources beside this one: the differences of each against the table and
+/// against this replay, and the figure with all of them on the same axes.
+std::string sources_part(const ReplayData& r, std::size_t k, const ReportContent& c) {
+    const std::string id = fmt::format("replay-{}-sources", k);
+    if (std::none_of(c.figures.begin(), c.figures.end(),
+                     [&](const Figure& f) { return f.id == id; }))
+        return "";
+    std::string s =
+        fmt::format("<h3 id=\"replay-{}-sources-h\">Sources on the same axes: {} replay, table, ",
+                    k, escape_html(r.label));
+    for (std::size_t i = 0; i < r.others.size(); ++i)
+        s += (i ? ", " : "") + escape_html(r.others[i].label) + " replay";
+    s += "</h3>\n<table class=\"num sources\"><tr><th class=\"k\">RMS / max |Δ|</th>";
+    for (const char* ck : coefficient_names) s += fmt::format("<th>{}</th>", ck);
+    s += "</tr>\n";
+    auto row = [&](const std::string& label, const ReplayData& x) {
+        s += fmt::format("<tr><td class=\"k\">{} replay − table</td>", escape_html(label));
+        for (const char* ck : coefficient_names)
+            s += fmt::format("<td>{} / {}</td>", jnum(x.summary, {"coefficients", ck, "rms"}),
+                             jnum(x.summary, {"coefficients", ck, "max_abs"}));
+        s += "</tr>\n";
+    };
+    row(r.label, r);
+    for (const auto& o : r.others) row(o.label, o);
+    for (const auto& o : r.others) {
+        if (!o.comparison || !r.comparison) continue;
+        s += fmt::format("<tr><td class=\"k\">{} replay − {} replay</td>", escape_html(r.label),
+                         escape_html(o.label));
+        for (const char* ck : coefficient_names) {
+            const auto g = replay_gap(*r.comparison, *o.comparison, std::string(ck) + "_replay");
+            s += g ? fmt::format("<td>{} / {}</td>", num((*g)[0]), num((*g)[1]))
+                   : std::string("<td>&ndash;</td>");
+        }
+        s += "</tr>\n";
+    }
+    s += "</table>\n";
+    for (const auto& o : r.others)
+        s += fmt::format(
+            "<p class=\"note\">{} replay from <code>{}</code>: time step {} s, {} "
+            "steps, wall time {} s.</p>\n",
+            escape_html(o.label), escape_html(o.dir.string()), jnum(o.summary, {"dt"}),
+            jnum(o.summary, {"steps"}), jnum(o.summary, {"wall_time_s"}));
+    s += plot(id);
+    s += fmt::format(
+        "<p class=\"note\">Solid: the table (blue) and the {} replay (red); dashed: the other "
+        "sources' replays against the same table at their own time steps (the differences "
+        "between replays are the second part of the table above, the {} replay's times, the "
+        "other interpolated linearly). Shaded: the {} replay's flagged intervals.</p>\n",
+        escape_html(r.label), escape_html(r.label), escape_html(r.label));
+    return s;
+}
+
+/// The surface Cp pictures of the replay's snapshots.
+std::string surface_part(const ReplayData& r, std::size_t k, const ReportContent& c) {
+    std::string pics;
+    std::size_t n = 0;
+    for (const auto& p : c.pictures) {
+        if (p.replay != k) continue;
+        ++n;
+        pics +=
+            fmt::format("<figure class=\"cp\" id=\"{}\">{}<figcaption>{}</figcaption></figure>\n",
+                        p.id, p.svg, escape_html(p.caption));
+    }
+    if (r.snapshot_index.empty()) return "";
+    std::string s = fmt::format(
+        "<h3>Surface Cp</h3>\n<p class=\"note\">{} snapshot(s) of the wall in "
+        "<code>surface/</code> (every {} s of flight); shown: the one nearest each flagged "
+        "interval's largest |replay − table| / tolerance, and a reference outside them. Plan "
+        "views of the mesh at rest (geometry axes, control surfaces undeflected), nose up; Cp on "
+        "the instantaneous airspeed's dynamic pressure, one colour range for the pictures of this "
+        "replay.</p>\n",
+        r.snapshot_index.size(), jnum(r.summary, {"snapshots", "every_s"}));
+    if (n == 0) s += "<p class=\"note\">No snapshot picked.</p>\n";
+    return s + pics;
+}
+
 std::string replay_section(const ReplayData& r, std::size_t k, const ReportContent& c) {
     std::string s = fmt::format("<section id=\"replay-{}\"><h2>Replay against table: {}</h2>\n", k,
                                 escape_html(r.name));
@@ -497,6 +602,8 @@ std::string replay_section(const ReplayData& r, std::size_t k, const ReportConte
     if (r.comparison)
         s += "<p class=\"note\">Shaded: flagged intervals (some |replay − table| above its "
              "tolerance); hover a shade for the reasons.</p>\n";
+    s += sources_part(r, k, c);
+    s += surface_part(r, k, c);
     return s + "</section>\n";
 }
 

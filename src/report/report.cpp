@@ -145,9 +145,9 @@ std::string find_chromium() {
 }
 
 nlohmann::json ReportResult::to_json() const {
-    nlohmann::json j{{"layout", layout},        {"parts", parts}, {"missing", missing},
-                     {"figures", n_figures},    {"files", files}, {"png_note", png_note},
-                     {"html_bytes", html_bytes}};
+    nlohmann::json j{{"layout", layout},         {"parts", parts},        {"missing", missing},
+                     {"figures", n_figures},     {"files", files},        {"png_note", png_note},
+                     {"html_bytes", html_bytes}, {"pictures", n_pictures}};
     if (!comparison.is_null()) j["comparison"] = comparison;
     return j;
 }
@@ -183,7 +183,10 @@ ReportResult make_report(const ReportOptions& o) {
     if (run.tables) r.parts.push_back("tables");
     if (run.compare) r.parts.push_back("compare-tables");
     for (const auto& m : run.manoeuvres) r.parts.push_back("manoeuvre:" + m.name);
-    for (const auto& rp : run.replays) r.parts.push_back("replay:" + rp.name);
+    for (const auto& rp : run.replays) {
+        r.parts.push_back("replay:" + rp.name);
+        for (const auto& o : rp.others) r.parts.push_back("replay:" + rp.name + ":" + o.label);
+    }
     if (run.run.is_object()) r.parts.push_back("provenance");
     r.missing = run.missing;
     if (content.comparison) r.comparison = content.comparison->to_json();
@@ -193,7 +196,11 @@ ReportResult make_report(const ReportOptions& o) {
     if (run.tables) add_missing("tables", run.tables->missing);
     if (run.compare) add_missing("compare-tables", run.compare->missing);
     for (const auto& m : run.manoeuvres) add_missing("manoeuvres/" + m.name, m.missing);
-    for (const auto& rp : run.replays) add_missing("replay/" + rp.name, rp.missing);
+    for (const auto& rp : run.replays) {
+        add_missing("replay/" + rp.name, rp.missing);
+        for (const auto& o : rp.others) add_missing("replay-" + o.label + "/" + rp.name, o.missing);
+    }
+    r.n_pictures = content.pictures.size();
     // Plots in the page: one per menu, per flight path and per figure outside the menus.
     std::set<std::string> in_menu;
     for (const auto& g : content.groups) in_menu.insert(g.figure_ids.begin(), g.figure_ids.end());
@@ -218,6 +225,10 @@ ReportResult make_report(const ReportOptions& o) {
         for (const auto& p : content.paths) {
             write(dir / (p.id + ".svg"), to_svg(p));
             write(dir / (p.id + ".csv"), to_csv(p));
+            svgs.push_back(dir / (p.id + ".svg"));
+        }
+        for (const auto& p : content.pictures) {
+            write(dir / (p.id + ".svg"), p.svg);
             svgs.push_back(dir / (p.id + ".svg"));
         }
         if (run.aircraft && !run.aircraft->top.empty()) {

@@ -359,6 +359,39 @@ ReplayData read_replay(const fs::path& dir, const std::string& name) {
     if (r.summary.is_object() && r.summary.contains("manoeuvre") &&
         r.summary["manoeuvre"].is_string() && !r.summary["manoeuvre"].get<std::string>().empty())
         r.name = r.summary["manoeuvre"].get<std::string>();
+    if (r.summary.is_object() && r.summary.contains("source") && r.summary["source"].is_string())
+        r.label = r.summary["source"].get<std::string>();
+    if (r.label.empty()) {
+        const std::string up =
+            fs::absolute(dir).lexically_normal().parent_path().filename().string();
+        r.label = up.starts_with("replay-") ? up.substr(7) : std::string("replay");
+    }
+    // Surface snapshots (manta replay --source euler): the index, then the ones the page shows.
+    if (fs::exists(dir / "surface" / "index.csv")) {
+        const TextCsv t = read_text_csv(dir / "surface" / "index.csv");
+        const std::size_t cs = t.require("step"), ct = t.require("t"), cf = t.require("file");
+        for (std::size_t i = 0; i < t.rows.size(); ++i) {
+            const double step = t.number(i, cs);
+            r.snapshot_index.emplace_back(static_cast<int>(step), t.number(i, ct), t.rows[i][cf]);
+        }
+        r.picks = pick_snapshots(r);
+        std::vector<std::size_t> read;  // index rows read, in r.snapshots order
+        std::shared_ptr<const SurfaceWall> wall;
+        if (!r.picks.empty())
+            wall = std::make_shared<const SurfaceWall>(
+                read_surface_wall(dir / "surface" / "wall.csv"));
+        for (auto& p : r.picks) {
+            const auto at = std::find(read.begin(), read.end(), p.snapshot);
+            if (at == read.end()) {
+                r.snapshots.push_back(read_surface_snapshot(
+                    dir / "surface" / std::get<2>(r.snapshot_index[p.snapshot]), wall));
+                read.push_back(p.snapshot);
+                p.snapshot = r.snapshots.size() - 1;
+            } else {
+                p.snapshot = static_cast<std::size_t>(at - read.begin());
+            }
+        }
+    }
     return r;
 }
 
@@ -394,6 +427,24 @@ RunData read_run(const fs::path& dir) {
                 run.replays.push_back(read_replay(d, d.filename().string()));
         } else {
             run.missing.push_back("replay/");
+        }
+        // Replays of the same manoeuvres by other sources: RUN_DIR/replay-<source>/<name>/,
+        // beside the replay of replay/<name>/ (alone when there is none).
+        for (const auto& other : subdirs(dir)) {
+            const std::string top = other.filename().string();
+            if (!top.starts_with("replay-") || top.size() <= 7) continue;
+            for (const auto& d : subdirs(other)) {
+                ReplayData o = read_replay(d, d.filename().string());
+                auto it = std::find_if(run.replays.begin(), run.replays.end(), [&](const auto& r) {
+                    return r.dir.filename() == d.filename();
+                });
+                if (it != run.replays.end()) {
+                    it->others.push_back(std::move(o));
+                } else {
+                    o.name += " (" + o.label + ")";
+                    run.replays.push_back(std::move(o));
+                }
+            }
         }
     } else if (has("tables.csv") || has("samples.csv")) {
         run.layout = "tables";

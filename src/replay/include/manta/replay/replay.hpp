@@ -76,6 +76,13 @@ struct ReplaySettings {
     std::string trajectory_label;
     /// Added to the fingerprint: anything else that changes the result (e.g. lattice options).
     std::string extra_fingerprint;
+    /// Surface snapshots (docs/replay.md, "Surface snapshots"): every this many seconds of
+    /// flight (snapshot_steps), written by `write_snapshot` into out/surface/step-NNNNNN.csv,
+    /// listed in out/surface/index.csv at the end; 0 or no writer: none.
+    double snapshot_every = 0.0;
+    /// Writes the run's surface at its current instant to the file (atomically); returns false
+    /// when the run has no surface to write (then no snapshot is taken).
+    std::function<bool(const aero::UnsteadyRun&, const std::filesystem::path&)> write_snapshot;
     std::function<void(const ReplayProgress&)> progress;
 };
 
@@ -88,6 +95,7 @@ struct ReplayOutcome {
     std::string dt_reason;
     nlohmann::json summary;  ///< summary.json (when completed)
     std::filesystem::path motion_file, comparison_file, summary_file;
+    int snapshots = 0;  ///< surface snapshots listed in surface/index.csv (0: none)
 };
 
 /// Replay `trajectory` through `source` and compare with `tables` (multilinear), writing the
@@ -98,6 +106,11 @@ struct ReplayOutcome {
 ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabase& tables,
                          const Trajectory& trajectory, const ReplaySettings& settings,
                          const std::filesystem::path& out);
+
+/// The steps at which a replay of `n_steps` steps of `dt` takes a surface snapshot every `every`
+/// seconds of flight: step 0, each first step at or past a whole multiple of `every` after the
+/// start, and the last step; empty for `every` <= 0.
+[[nodiscard]] std::vector<int> snapshot_steps(int n_steps, double dt, double every);
 
 /// One row of comparison.csv (docs/replay.md): state, then replay, table and difference of each
 /// coefficient, and the flag.

@@ -24,8 +24,27 @@ struct FigureGroup {
     std::size_t initial = 0;  ///< the choice shown first
 };
 
+/// A picture drawn in C++ (inline SVG): a replay's surface Cp at a snapshot.
+struct Picture {
+    std::string id;          ///< unique; the file stem of --figures
+    std::size_t replay = 0;  ///< index into RunData::replays
+    std::string caption;     ///< what it shows (HTML-escaped when written)
+    std::string svg;         ///< the SVG element
+};
+
+/// The Cp range of a replay's pictures: the 1st and 99th percentiles of the nodes' Cp.
+struct CpRange {
+    double lo = -1.0, hi = 1.0;
+};
+[[nodiscard]] CpRange cp_range(const std::vector<const SurfaceSnapshot*>& snapshots);
+/// Plan views (from above and below, one scale) of a snapshot's wall coloured by Cp in `levels`
+/// bands of `range`, the triangles of a band merged into polygons, with a colour bar.
+[[nodiscard]] std::string cp_picture_svg(const SurfaceSnapshot& s, const CpRange& range,
+                                         const std::string& title, int levels = 16);
+
 /// Everything drawn in the report, built from the run data.
 struct ReportContent {
+    std::vector<Picture> pictures;         ///< surface Cp pictures, by replay
     std::vector<Figure> figures;           ///< every x-y figure (ids unique)
     std::vector<FlightPath> paths;         ///< one per manoeuvre
     std::vector<FigureGroup> groups;       ///< menus over figures
@@ -60,6 +79,7 @@ struct ReportResult {
     std::vector<std::string> parts;    ///< parts shown ("aircraft", "tables", "manoeuvre:x"...)
     std::vector<std::string> missing;  ///< parts or files absent
     std::size_t n_figures = 0;         ///< plots in the page
+    std::size_t n_pictures = 0;        ///< surface Cp pictures (inline SVG) in the page
     std::vector<std::string> files;    ///< files written (the page last)
     std::string png_note;              ///< why PNGs were not written ("" if they were / not asked)
     std::size_t html_bytes = 0;

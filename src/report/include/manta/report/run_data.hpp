@@ -6,11 +6,14 @@
 /// formed, or reading fails with a one-line error naming the file, line and column.
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace manta::report {
@@ -117,13 +120,51 @@ struct ManoeuvreData {
     [[nodiscard]] const Columns& curve() const { return dense ? *dense : *nodes; }
 };
 
+/// The wall of an Euler replay's surface snapshots (surface/wall.csv,
+/// docs/formats.md#surface-snapshot): nodes and triangles (normals into the flow).
+struct SurfaceWall {
+    std::filesystem::path file;
+    std::map<std::string, std::string> meta;             ///< every `# key: value` line
+    std::vector<std::string> markers;                    ///< the wall markers
+    std::vector<std::array<double, 3>> x;                ///< node coordinates (geometry axes) [m]
+    std::vector<std::array<std::int32_t, 4>> triangles;  ///< a b c (node indices), marker index
+};
+
+/// One surface snapshot: Cp of every wall node at one instant.
+struct SurfaceSnapshot {
+    std::filesystem::path file;
+    double t = 0.0;  ///< flight time [s]
+    int step = 0;
+    std::map<std::string, std::string> meta;  ///< every `# key: value` line
+    std::shared_ptr<const SurfaceWall> wall;  ///< its wall.csv
+    std::vector<double> cp;                   ///< one per wall node
+};
+
+/// A snapshot the report shows: at a flagged interval's largest difference, or for reference.
+struct SnapshotPick {
+    std::size_t snapshot = 0;  ///< into ReplayData::snapshots
+    int flag = -1;             ///< index of the flagged interval in summary.json, -1: reference
+    double t_wanted = 0.0;     ///< the instant it stands for [s]
+    std::string why;           ///< the caption's reason
+};
+
 /// A `manta replay --out` directory.
 struct ReplayData {
     std::string name;
     std::filesystem::path dir;
+    /// The source in the page and the legends: summary.json's `source` (`euler`, `vlm`), else the
+    /// name of the folder above (`replay-vlm` gives `vlm`).
+    std::string label;
     nlohmann::json summary;             ///< summary.json (null if absent)
     std::optional<Columns> comparison;  ///< comparison.csv
     std::vector<std::string> missing;
+    /// Replays of the same manoeuvre by other sources (RUN_DIR/replay-<source>/<name>/), drawn
+    /// on the same axes.
+    std::vector<ReplayData> others;
+    /// surface/index.csv: every snapshot (step, t [s], file); empty without one.
+    std::vector<std::tuple<int, double, std::string>> snapshot_index;
+    std::vector<SurfaceSnapshot> snapshots;  ///< the ones picked (read)
+    std::vector<SnapshotPick> picks;
 };
 
 /// Everything the report shows.
@@ -153,6 +194,18 @@ struct RunData {
                                            const std::string& name);
 /// Read a `manta replay --out` directory.
 [[nodiscard]] ReplayData read_replay(const std::filesystem::path& dir, const std::string& name);
+/// Read a snapshot's wall (surface/wall.csv) and a snapshot of it
+/// (docs/formats.md#surface-snapshot). InputError naming the file and line when one is malformed
+/// or the snapshot does not fit the wall.
+[[nodiscard]] SurfaceWall read_surface_wall(const std::filesystem::path& file);
+[[nodiscard]] SurfaceSnapshot read_surface_snapshot(const std::filesystem::path& file,
+                                                    std::shared_ptr<const SurfaceWall> wall);
+/// The snapshots a replay's page shows (docs/report.md): for each flagged interval the snapshot
+/// nearest its time of largest |difference| / tolerance (at most `max_flagged` distinct ones),
+/// and one reference snapshot outside every flagged interval (the one farthest from them; with
+/// no flags the middle one). Uses the replay's summary, comparison and snapshot index.
+[[nodiscard]] std::vector<SnapshotPick> pick_snapshots(const ReplayData& r,
+                                                       std::size_t max_flagged = 6);
 /// Read a trajectory CSV (docs/formats.md#trajectory-csv): the required columns t x y z phi
 /// theta psi V alpha beta p q r elevator aileron rudder, times strictly increasing.
 [[nodiscard]] Columns read_trajectory(const std::filesystem::path& file);
