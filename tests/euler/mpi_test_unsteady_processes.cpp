@@ -31,6 +31,7 @@
 
 #include "flap_meshes.hpp"
 #include "manta/aero/motion.hpp"
+#include "manta/core/error.hpp"
 #include "manta/euler/case.hpp"
 #include "manta/parallel/mpi.hpp"
 #include "test_meshes.hpp"
@@ -115,9 +116,9 @@ Comparison compare(const fs::path& a, const fs::path& b) {
     return c;
 }
 
-/// Writes the case (rank 0), runs it on rank 0 alone and on both processes, and compares.
-Comparison one_and_two(const std::string& name, double flap, const std::string& mesh_motion,
-                       int blocks) {
+/// The case's folder (written by rank 0; every process returns after it is there).
+fs::path write_case(const std::string& name, double flap, const std::string& mesh_motion,
+                    int blocks) {
     const parallel::Communicator& comm = *world;
     const fs::path dir = folder() / name;
     if (comm.rank() == 0) {
@@ -137,6 +138,14 @@ Comparison one_and_two(const std::string& name, double flap, const std::string& 
         aero::write_motion(dir / "m.csv", plate_motion(flap));
     }
     comm.barrier();
+    return dir;
+}
+
+/// Writes the case, runs it on rank 0 alone and on both processes, and compares (rank 0).
+Comparison one_and_two(const std::string& name, double flap, const std::string& mesh_motion,
+                       int blocks) {
+    const parallel::Communicator& comm = *world;
+    const fs::path dir = write_case(name, flap, mesh_motion, blocks);
     euler::CaseInputs in;
     in.mesh = dir / "plate.su2";
     in.config = dir / "case.yaml";
@@ -202,6 +211,26 @@ TEST_F(UnsteadyProcesses, OneBlockPerProcessDiffersByTheInnerTolerance) {
     if (world->rank() != 0) return;
     EXPECT_GT(std::max({c.CL, c.CD, c.Cm}), 1e-5);
     EXPECT_LT(std::max({c.CL, c.CD, c.Cm}), 1e-1);
+}
+
+TEST_F(UnsteadyProcesses, BlocksForAnotherProcessCountAreRefused) {
+    const fs::path dir = write_case("refused", 0.0, "rigid", 3);
+    euler::CaseInputs in;
+    in.mesh = dir / "plate.su2";
+    in.config = dir / "case.yaml";
+    in.motion = dir / "m.csv";
+    in.out = dir / "p2";
+    std::string what;
+    try {
+        euler::CfdCase c(in, *world);
+        (void)c.run();
+    } catch (const InputError& e) {
+        what = e.what();
+    }
+    EXPECT_NE(what.find("solver.preconditioner_blocks = 3 on 2 processes; expected 1 or 3 "
+                        "processes"),
+              std::string::npos)
+        << what;
 }
 
 }  // namespace
