@@ -553,10 +553,14 @@ void BlockIlu0::factorize(const BlockMatrix& A) {
     const auto a_values = A.values();
     const Index n = A.n_rows();
     if (!block_.empty()) {
-        // Blocks: the ILU(0) of the kept blocks only (their pattern rebuilt each time: O(nnz),
-        // as the copy of their values).
-        n_rows_ = n;
-        kept_pattern(A, block_, rows_, cols_, diag_, pos_);
+        // Blocks: the ILU(0) of the kept blocks only (their pattern built once per matrix
+        // pattern and labels, their values gathered each time).
+        if (blocks_changed_ || n_rows_ != n || kept_for_ != A.n_blocks()) {
+            kept_pattern(A, block_, rows_, cols_, diag_, pos_);
+            n_rows_ = n;
+            kept_for_ = A.n_blocks();
+            blocks_changed_ = false;
+        }
         gather_blocks(a_values, pos_, kept_);
         values_.resize(cols_.size() * bb);
         std::int64_t max_len = 0;
@@ -582,6 +586,7 @@ void BlockIlu0::factorize(const BlockMatrix& A) {
         const auto end = a_cols.begin() + a_rows[r + 1];
         return static_cast<std::int64_t>(std::lower_bound(begin, end, n) - begin);
     };
+    blocks_changed_ = true;  // a later factorisation with blocks rebuilds their pattern
     bool same = n_rows_ == n && rows_.size() == static_cast<std::size_t>(n) + 1;
     if (same) {
         for (Index r = 0; r < n && same; ++r)
@@ -640,9 +645,15 @@ void BlockSgs::factorize(const BlockMatrix& A) {
     A_ = &A;
     const Index n = A.n_rows();
     if (!block_.empty()) {
-        kept_pattern(A, block_, rows_, cols_, diag_, pos_);
+        if (blocks_changed_ || rows_.size() != static_cast<std::size_t>(n) + 1 ||
+            kept_for_ != A.n_blocks()) {
+            kept_pattern(A, block_, rows_, cols_, diag_, pos_);
+            kept_for_ = A.n_blocks();
+            blocks_changed_ = false;
+        }
         gather_blocks(A.values(), pos_, values_);
     } else {
+        blocks_changed_ = true;
         rows_.clear();
         cols_.clear();
         diag_.clear();

@@ -110,7 +110,10 @@ public:
     /// distributes, one process applies the N processes' preconditioner in the same
     /// arithmetic (docs/parallel.md, "The same history on 1 and N processes"). Takes effect
     /// at the next `factorize`.
-    void set_blocks(std::vector<int> block) { block_ = std::move(block); }
+    void set_blocks(std::vector<int> block) {
+        block_ = std::move(block);
+        blocks_changed_ = true;
+    }
     /// Set up for `A` (its pattern and values). NumericalError naming the row if a diagonal
     /// block is singular.
     virtual void factorize(const BlockMatrix& A) = 0;
@@ -120,7 +123,9 @@ public:
     [[nodiscard]] virtual std::size_t memory_bytes() const noexcept = 0;
 
 protected:
-    std::vector<int> block_;  ///< per owned row: its block (empty: one block)
+    std::vector<int> block_;      ///< per owned row: its block (empty: one block)
+    bool blocks_changed_ = true;  ///< the kept pattern is to be rebuilt
+    std::int64_t kept_for_ = -1;  ///< n_blocks() of the matrix the kept pattern was built for
 };
 
 /// Block ILU(0) of the owned rows and columns of a BlockMatrix (ghost columns dropped), with
