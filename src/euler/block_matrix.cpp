@@ -364,6 +364,43 @@ Index factorize_kernel(const Csr& a, float* lu, const float* src, const std::int
     return factorize_base(a, lu, src, offsets, row, where);
 }
 
+/// The blocks of A's owned rows and columns whose row and column carry the same label in
+/// `block` (one per owned row): CSR offsets, columns (ascending, as in A), diagonal positions
+/// and each kept block's position in A.
+void kept_pattern(const BlockMatrix& A, std::span<const int> block, std::vector<std::int64_t>& rows,
+                  std::vector<Index>& cols, std::vector<std::int64_t>& diag,
+                  std::vector<std::int64_t>& pos) {
+    const Index n = A.n_rows();
+    if (block.size() != static_cast<std::size_t>(n))
+        throw InputError(fmt::format(
+            "preconditioner blocks: {} labels for {} owned rows; expected one per owned row",
+            block.size(), n));
+    const auto a_rows = A.row_offsets();
+    const auto a_cols = A.columns();
+    rows.assign(static_cast<std::size_t>(n) + 1, 0);
+    diag.assign(static_cast<std::size_t>(n), 0);
+    cols.clear();
+    pos.clear();
+    for (Index r = 0; r < n; ++r) {
+        for (std::int64_t k = a_rows[r]; k < a_rows[r + 1]; ++k) {
+            const Index c = a_cols[k];
+            if (c >= n || block[c] != block[r]) continue;
+            if (c == r) diag[r] = static_cast<std::int64_t>(cols.size());
+            cols.push_back(c);
+            pos.push_back(k);
+        }
+        rows[r + 1] = static_cast<std::int64_t>(cols.size());
+    }
+}
+
+/// dst = the blocks of `values` at `pos`, in order.
+void gather_blocks(std::span<const float> values, std::span<const std::int64_t> pos,
+                   std::vector<float>& dst) {
+    dst.resize(pos.size() * bb);
+    for (std::size_t k = 0; k < pos.size(); ++k)
+        std::memcpy(dst.data() + k * bb, values.data() + pos[k] * bb, bb * sizeof(float));
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------ BlockMatrix
@@ -434,6 +471,36 @@ BlockMatrix::BlockMatrix(Index n_rows, Index n_cols, std::span<const std::array<
 
 void BlockMatrix::set_zero() noexcept {
     std::fill(values_.begin(), values_.end(), 0.0f);
+    std::fill(diag_sum_.begin(), diag_sum_.end(), 0.0);
+    diag_open_ = !diag_sum_.empty();
+}
+
+void BlockMatrix::add_diagonal(Index r, const Mat5& b) noexcept {
+    if (!diag_open_) {
+        add(diag_[r], b);
+        return;
+    }
+    double* a = diag_sum_.data() + static_cast<std::size_t>(r) * bb;
+    for (int i = 0; i < bs; ++i)
+        for (int c = 0; c < bs; ++c) a[bs * i + c] += b(i, c);
+}
+
+void BlockMatrix::accumulate_diagonals(bool on) {
+    if (on)
+        diag_sum_.assign(static_cast<std::size_t>(n_rows_) * bb, 0.0);
+    else
+        diag_sum_ = {};
+    diag_open_ = false;
+}
+
+void BlockMatrix::flush_diagonals() noexcept {
+    if (!diag_open_) return;
+    for (Index r = 0; r < n_rows_; ++r) {
+        float* a = values_.data() + diag_[r] * bb;
+        const double* d = diag_sum_.data() + static_cast<std::size_t>(r) * bb;
+        for (int q = 0; q < bb; ++q) a[q] += static_cast<float>(d[q]);
+    }
+    diag_open_ = false;
 }
 
 void BlockMatrix::add(std::int64_t position, const Mat5& b) noexcept {
@@ -474,7 +541,8 @@ void BlockMatrix::multiply(std::span<const double> x, std::span<double> y) const
 
 std::size_t BlockMatrix::memory_bytes() const noexcept {
     return sizeof(*this) + capacity_bytes(rows_) + capacity_bytes(cols_) + capacity_bytes(values_) +
-           capacity_bytes(diag_) + capacity_bytes(edge_ij_) + capacity_bytes(edge_ji_);
+           capacity_bytes(diag_) + capacity_bytes(edge_ij_) + capacity_bytes(edge_ji_) +
+           capacity_bytes(diag_sum_);
 }
 
 // ------------------------------------------------------------------------------ BlockIlu0
@@ -484,6 +552,31 @@ void BlockIlu0::factorize(const BlockMatrix& A) {
     const auto a_cols = A.columns();
     const auto a_values = A.values();
     const Index n = A.n_rows();
+    if (!block_.empty()) {
+        // Blocks: the ILU(0) of the kept blocks only (their pattern built once per matrix
+        // pattern and labels, their values gathered each time).
+        if (blocks_changed_ || n_rows_ != n || kept_for_ != A.n_blocks()) {
+            kept_pattern(A, block_, rows_, cols_, diag_, pos_);
+            n_rows_ = n;
+            kept_for_ = A.n_blocks();
+            blocks_changed_ = false;
+        }
+        gather_blocks(a_values, pos_, kept_);
+        values_.resize(cols_.size() * bb);
+        std::int64_t max_len = 0;
+        for (Index r = 0; r < n; ++r) max_len = std::max(max_len, rows_[r + 1] - rows_[r]);
+        std::vector<double> row(static_cast<std::size_t>(max_len) * bb);
+        std::vector<std::int64_t> where(static_cast<std::size_t>(n), -1);
+        const Csr a{n, rows_.data(), cols_.data(), diag_.data(), nullptr};
+        const Index bad = factorize_kernel(a, values_.data(), kept_.data(), rows_.data(),
+                                           row.data(), where.data());
+        if (bad >= 0)
+            throw NumericalError(fmt::format(
+                "block ILU(0): singular pivot block in row {} (local node) of the implicit "
+                "matrix; expected an invertible 5x5 diagonal block",
+                bad));
+        return;
+    }
 
     // Symbolic part: the owned columns of each row. Columns are sorted and ghosts are numbered
     // after the owned nodes, so they are a prefix of each row of A. Rebuilt only when the
@@ -493,6 +586,7 @@ void BlockIlu0::factorize(const BlockMatrix& A) {
         const auto end = a_cols.begin() + a_rows[r + 1];
         return static_cast<std::int64_t>(std::lower_bound(begin, end, n) - begin);
     };
+    blocks_changed_ = true;  // a later factorisation with blocks rebuilds their pattern
     bool same = n_rows_ == n && rows_.size() == static_cast<std::size_t>(n) + 1;
     if (same) {
         for (Index r = 0; r < n && same; ++r)
@@ -541,7 +635,8 @@ void BlockIlu0::apply(std::span<const double> r, std::span<double> z) const noex
 
 std::size_t BlockIlu0::memory_bytes() const noexcept {
     return sizeof(*this) + capacity_bytes(rows_) + capacity_bytes(cols_) + capacity_bytes(diag_) +
-           capacity_bytes(values_);
+           capacity_bytes(values_) + capacity_bytes(pos_) + capacity_bytes(kept_) +
+           capacity_bytes(block_);
 }
 
 // ------------------------------------------------------------------------------ BlockSgs
@@ -549,6 +644,22 @@ std::size_t BlockIlu0::memory_bytes() const noexcept {
 void BlockSgs::factorize(const BlockMatrix& A) {
     A_ = &A;
     const Index n = A.n_rows();
+    if (!block_.empty()) {
+        if (blocks_changed_ || rows_.size() != static_cast<std::size_t>(n) + 1 ||
+            kept_for_ != A.n_blocks()) {
+            kept_pattern(A, block_, rows_, cols_, diag_, pos_);
+            kept_for_ = A.n_blocks();
+            blocks_changed_ = false;
+        }
+        gather_blocks(A.values(), pos_, values_);
+    } else {
+        blocks_changed_ = true;
+        rows_.clear();
+        cols_.clear();
+        diag_.clear();
+        pos_.clear();
+        values_.clear();
+    }
     dinv_.resize(static_cast<std::size_t>(n) * bb);
     double d[bb], inv[bb];
     for (Index r = 0; r < n; ++r) {
@@ -567,13 +678,17 @@ void BlockSgs::factorize(const BlockMatrix& A) {
 
 void BlockSgs::apply(std::span<const double> r, std::span<double> z) const noexcept {
     MANTA_ASSERT(A_ != nullptr);
-    const Csr a{A_->n_rows(), A_->row_offsets().data(), A_->columns().data(),
-                A_->diagonals().data(), A_->values().data()};
+    const Csr a = rows_.empty()
+                      ? Csr{A_->n_rows(), A_->row_offsets().data(), A_->columns().data(),
+                            A_->diagonals().data(), A_->values().data()}
+                      : Csr{A_->n_rows(), rows_.data(), cols_.data(), diag_.data(), values_.data()};
     sgs_kernel(a, dinv_.data(), r.data(), z.data());
 }
 
 std::size_t BlockSgs::memory_bytes() const noexcept {
-    return sizeof(*this) + capacity_bytes(dinv_);
+    return sizeof(*this) + capacity_bytes(dinv_) + capacity_bytes(rows_) + capacity_bytes(diag_) +
+           capacity_bytes(pos_) + capacity_bytes(cols_) + capacity_bytes(values_) +
+           capacity_bytes(block_);
 }
 
 // ------------------------------------------------------------------------------ Fgmres

@@ -128,6 +128,8 @@ CfdConfig read(const ConfigNode& root) {
         v.preconditioner = s.choice_or("preconditioner", "sgs", {"sgs", "ilu0"}) == "sgs"
                                ? PreconditionerKind::sgs
                                : PreconditionerKind::ilu0;
+        v.preconditioner_blocks = static_cast<int>(s.integer_or(
+            "preconditioner_blocks", v.preconditioner_blocks, NumberSpec::range(0, 1e6, "-")));
         s.finish();
         if (v.cfl_max < v.cfl_initial)
             s.fail("cfl_max", fmt::format("is below cfl = {}", v.cfl_initial), "cfl_max >= cfl");

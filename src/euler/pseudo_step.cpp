@@ -10,6 +10,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/euler/solver.hpp"
+#include "manta/parallel/partition.hpp"
 
 namespace manta::euler {
 
@@ -58,10 +59,25 @@ PseudoTimeStep::PseudoTimeStep(const Domain& domain, const parallel::Communicato
     for (std::size_t i = 0; i < static_cast<std::size_t>(n_local); ++i)
         for (int k = 0; k < 5; ++k) U_good_[5 * i + k] = static_cast<float>(U_inf[k]);
     J_ = BlockMatrix(domain_.n_owned, n_local, domain_.dual->edges);
+    // Reproducible across process counts: the diagonal blocks summed in double precision.
+    if (setup_.solver.preconditioner_blocks >= 1) J_.accumulate_diagonals(true);
     if (setup_.solver.preconditioner == PreconditionerKind::sgs)
         precond_ = std::make_unique<BlockSgs>();
     else
         precond_ = std::make_unique<BlockIlu0>();
+    if (const int blocks = setup_.solver.preconditioner_blocks; blocks >= 1) {
+        // The parts of an N-process run: on one process its preconditioner's blocks; on N
+        // processes each process's nodes are one part already (the same METIS partition of
+        // the same mesh, parallel::distribute).
+        if (comm_.size() == 1) {
+            if (blocks > 1) precond_->set_blocks(parallel::partition_nodes(m, blocks));
+        } else if (comm_.size() != blocks) {
+            throw InputError(fmt::format(
+                "{}: solver.preconditioner_blocks = {} on {} processes; expected 1 or {} "
+                "processes, or preconditioner_blocks 0 (one block per process)",
+                m.source(), blocks, comm_.size(), blocks));
+        }
+    }
     lambda_.assign(static_cast<std::size_t>(n_local), 0.0);
     dU_.assign(5 * static_cast<std::size_t>(n_local), 0.0);
     n_global_nodes_ = static_cast<std::int64_t>(comm_.sum(static_cast<double>(domain_.n_owned)));
@@ -421,6 +437,7 @@ StepOutcome PseudoTimeStep::step(NodeStates& U, IterationState& it, const StopRu
     if (!(terms.reuse_matrix && matrix_current_ && !first_order)) {
         matrix_current_ = false;
         op.jacobian(U, J_);
+        J_.flush_diagonals();
         if (terms.diagonal.empty()) {
             for (Index i = 0; i < n_owned; ++i)
                 J_.add_to_diagonal(i, lambda_[static_cast<std::size_t>(i)] / it.cfl);

@@ -66,6 +66,8 @@ void SolverSettings::validate() const {
          "a number >= 0 (0: never)");
     need(first_order_iterations >= 0, "first_order_iterations", first_order_iterations,
          "an integer >= 0");
+    need(preconditioner_blocks >= 0, "preconditioner_blocks", preconditioner_blocks,
+         "an integer >= 0 (0: one block per process)");
     need(linear.restart >= 1, "linear_restart", linear.restart, "an integer >= 1");
     need(linear.max_iterations >= 1, "linear_iterations", linear.max_iterations, "an integer >= 1");
     need(linear.relative_tolerance > 0 && linear.relative_tolerance < 1, "linear_tolerance",

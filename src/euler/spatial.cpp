@@ -678,7 +678,7 @@ void SpatialOperator::apply_wall_tangency(const std::vector<double>& lambda, dou
             for (int k = 0; k < t.count; ++k)
                 A.block<3, 1>(1, 0) -=
                     (lam * t.b[static_cast<std::size_t>(k)]) * t.e[static_cast<std::size_t>(k)];
-        J.add(J.diagonal(t.node), A);
+        J.add_diagonal(t.node, A);
     }
 }
 
@@ -795,10 +795,10 @@ void SpatialOperator::jacobian(const NodeStates& U, BlockMatrix& J) const {
         flux_jacobians(primitive(U.col(i), gamma_), primitive(U.col(j), gamma_), nv, g, gamma_,
                        options_.flux, A, B);
         // R_i += F(U_i, U_j), R_j -= F(U_i, U_j).
-        J.add(J.diagonal(i), A);
+        J.add_diagonal(i, A);
         J.add(J.edge_ij(e), B);
         J.add(J.edge_ji(e), -A);
-        if (j < no) J.add(J.diagonal(j), -B);
+        if (j < no) J.add_diagonal(j, -B);
     }
     add_boundary_jacobians(U, J);
 }
@@ -817,9 +817,9 @@ void SpatialOperator::add_boundary_jacobians(const NodeStates& U, BlockMatrix& J
             const double g = gb != nullptr ? gb[k] : 0.0;
             if (kinds_[mk] == BoundaryKind::farfield) {
                 (void)farfield_flux(Wn, W_inf_, nv, g, gamma_, &A);
-                J.add(J.diagonal(n), A);
+                J.add_diagonal(n, A);
             } else {
-                J.add(J.diagonal(n), wall_flux_jacobian(Wn, nv, g, gamma_));
+                J.add_diagonal(n, wall_flux_jacobian(Wn, nv, g, gamma_));
             }
         }
     }
@@ -1048,10 +1048,10 @@ void SpatialOperator::jacobian_jst(const NodeStates& U, BlockMatrix& J) const {
         const Mat5 B = 0.5 * physical_flux_jacobian(Wj, nv, g, gamma_) -
                        (std::max(e_min, c.e2 + c.e4 * aj) * c.s_lambda) * jst_transform(Wj, gamma_);
         // R_i += F(U_i, U_j), R_j -= F(U_i, U_j).
-        J.add(J.diagonal(i), A);
+        J.add_diagonal(i, A);
         J.add(J.edge_ij(e), B);
         J.add(J.edge_ji(e), -A);
-        if (j < no) J.add(J.diagonal(j), -B);
+        if (j < no) J.add_diagonal(j, -B);
     }
 }
 

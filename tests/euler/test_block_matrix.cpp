@@ -591,5 +591,100 @@ TEST(BlockSgs, FgmresConvergesAndSingularDiagonalNamesRow) {
         EXPECT_NE(std::string(e.what()).find("row 1 "), std::string::npos) << e.what();
     }
 }
+
+// ------------------------------------------------------------------------------ blocks
+
+/// With `set_blocks`, SGS and ILU(0) drop the couplings between rows of different labels as
+/// they drop the ghost columns: they act exactly as on the matrix without those couplings (the
+/// preconditioner a process would apply to its part, docs/parallel.md).
+TEST(PreconditionerBlocks, ActAsOnTheMatrixWithoutTheCouplingsBetweenBlocks) {
+    const int nx = 4, ny = 3, nz = 3;
+    const auto edges = tet_grid_edges(nx, ny, nz);
+    const Index n_rows = 30, n_cols = 36;  // the last 6 nodes are ghosts
+    std::vector<int> label(static_cast<std::size_t>(n_cols));
+    for (Index v = 0; v < n_cols; ++v) label[v] = v % nx < 2 ? 0 : 1;  // interleaved numbers
+    BlockMatrix A(n_rows, n_cols, edges);
+    std::mt19937_64 rng(21);
+    fill_dominant(A, edges, rng, 0.5);
+    std::vector<Edge> kept;
+    std::vector<Index> from;
+    for (Index e = 0; e < Index(edges.size()); ++e) {
+        const Index i = edges[e][0], j = edges[e][1];
+        if (i >= n_rows || j >= n_rows || label[i] == label[j]) {
+            kept.push_back(edges[e]);
+            from.push_back(e);
+        }
+    }
+    ASSERT_LT(kept.size(), edges.size());
+    BlockMatrix B(n_rows, n_cols, kept);
+    for (Index k = 0; k < Index(kept.size()); ++k) {
+        if (A.edge_ij(from[k]) >= 0) B.add(B.edge_ij(k), A.block(A.edge_ij(from[k])));
+        if (A.edge_ji(from[k]) >= 0) B.add(B.edge_ji(k), A.block(A.edge_ji(from[k])));
+    }
+    for (Index r = 0; r < n_rows; ++r) B.add(B.diagonal(r), A.block(A.diagonal(r)));
+    const std::vector<int> rows_label(label.begin(), label.begin() + n_rows);
+    const auto r = random_vector(5 * std::size_t(n_rows), rng);
+    auto check = [&](Preconditioner& with, Preconditioner& without, const char* what) {
+        with.set_blocks(rows_label);
+        with.factorize(A);
+        without.factorize(B);
+        std::vector<double> z1(r.size()), z2(r.size());
+        with.apply(r, z1);
+        without.apply(r, z2);
+        double diff = 0.0, size = 0.0;
+        for (std::size_t q = 0; q < r.size(); ++q) {
+            diff = std::max(diff, std::abs(z1[q] - z2[q]));
+            size = std::max(size, std::abs(z2[q]));
+        }
+        EXPECT_LE(diff, 1e-14 * size) << what;
+        // Without the blocks the couplings count: another result.
+        with.set_blocks({});
+        with.factorize(A);
+        with.apply(r, z1);
+        diff = 0.0;
+        for (std::size_t q = 0; q < r.size(); ++q) diff = std::max(diff, std::abs(z1[q] - z2[q]));
+        EXPECT_GT(diff, 1e-3 * size) << what;
+    };
+    BlockSgs s1, s2;
+    check(s1, s2, "block SGS");
+    BlockIlu0 i1, i2;
+    check(i1, i2, "block ILU(0)");
+    BlockSgs bad;
+    bad.set_blocks({0, 1});
+    EXPECT_THROW(bad.factorize(A), InputError);
+}
+
+/// With the double accumulation the diagonal blocks are the rounded double sums, whatever the
+/// order of the contributions (the order of a process's local edges is not the whole mesh's).
+TEST(BlockMatrix, DiagonalsSummedInDoubleDoNotDependOnTheOrder) {
+    const std::vector<Edge> edges = {{0, 1}, {1, 2}};
+    std::mt19937_64 rng(5);
+    std::vector<Mat5> c;
+    for (int k = 0; k < 14; ++k) c.push_back(random_block(rng, std::pow(10.0, k % 5 - 2)));
+    BlockMatrix A(3, 3, edges), B(3, 3, edges), F(3, 3, edges);
+    A.accumulate_diagonals(true);
+    B.accumulate_diagonals(true);
+    A.set_zero();
+    B.set_zero();
+    F.set_zero();
+    Mat5 sum = Mat5::Zero();
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        A.add_diagonal(1, c[k]);
+        B.add_diagonal(1, c[c.size() - 1 - k]);
+        F.add_diagonal(1, c[k]);  // off: single precision, as add
+        sum += c[k];
+    }
+    A.flush_diagonals();
+    B.flush_diagonals();
+    const Mat5 a = A.block(A.diagonal(1)), b = B.block(B.diagonal(1));
+    for (int q = 0; q < 25; ++q) {
+        EXPECT_EQ(a(q / 5, q % 5), b(q / 5, q % 5));
+        EXPECT_EQ(a(q / 5, q % 5), double(float(sum(q / 5, q % 5))));
+    }
+    EXPECT_NE(F.block(F.diagonal(1)), a);  // summed in single precision: other last bits
+    // After the flush add_diagonal adds in single precision again, until the next set_zero.
+    A.add_diagonal(1, Mat5::Identity());
+    EXPECT_EQ(A.block(A.diagonal(1))(0, 0), double(float(a(0, 0)) + 1.0f));
+}
 }  // namespace
 }  // namespace manta::euler

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "manta/euler/gas.hpp"
@@ -51,6 +52,20 @@ public:
     void set_zero() noexcept;
     /// Add `b` to the block at `position`; nothing if `position` < 0.
     void add(std::int64_t position, const Mat5& b) noexcept;
+    /// Add `b` to the diagonal block of owned row `r`: in single precision as `add`, or, while
+    /// the double accumulation is on and not yet flushed, to a double-precision sum.
+    void add_diagonal(Index r, const Mat5& b) noexcept;
+    /// Sum the diagonal blocks' contributions in double precision from each `set_zero` to the
+    /// next `flush_diagonals` (off: the default). A diagonal block collects one contribution per
+    /// edge of its node, in the order of the edges, which differs between a process's part and
+    /// the whole mesh: summed in single precision the blocks of 1 and N processes differ in
+    /// their last bits at the parts' border; rounded once from a double sum they agree (docs/
+    /// parallel.md, "The same history on 1 and N processes"). 200 bytes per owned row.
+    void accumulate_diagonals(bool on);
+    /// Round the double sums into the diagonal blocks (after the assembly, before any other
+    /// change of the matrix); `add_diagonal` adds in single precision again until `set_zero`.
+    /// Nothing when the accumulation is off.
+    void flush_diagonals() noexcept;
     /// Add `s` to the diagonal entries of the diagonal block of row `r`.
     void add_to_diagonal(Index r, double s) noexcept;
     /// Left-multiply every block of owned row `r` by `T`.
@@ -80,6 +95,8 @@ private:
     std::vector<std::int64_t> diag_;
     std::vector<std::int64_t> edge_ij_;
     std::vector<std::int64_t> edge_ji_;
+    std::vector<double> diag_sum_;  ///< accumulate_diagonals: 25 per owned row
+    bool diag_open_ = false;        ///< diag_sum_ collects add_diagonal
 };
 
 /// A preconditioner of the owned block of a BlockMatrix (ghost columns dropped: block Jacobi
@@ -87,6 +104,16 @@ private:
 class Preconditioner {
 public:
     virtual ~Preconditioner() = default;
+    /// Block Jacobi within this process as well: `block` holds one label per owned row, and
+    /// the couplings between rows of different labels are dropped like the ghost columns
+    /// (empty: none dropped, the default). With the labels of the parts an N-process run
+    /// distributes, one process applies the N processes' preconditioner in the same
+    /// arithmetic (docs/parallel.md, "The same history on 1 and N processes"). Takes effect
+    /// at the next `factorize`.
+    void set_blocks(std::vector<int> block) {
+        block_ = std::move(block);
+        blocks_changed_ = true;
+    }
     /// Set up for `A` (its pattern and values). NumericalError naming the row if a diagonal
     /// block is singular.
     virtual void factorize(const BlockMatrix& A) = 0;
@@ -94,6 +121,11 @@ public:
     virtual void apply(std::span<const double> r, std::span<double> z) const noexcept = 0;
     /// Bytes held (capacity).
     [[nodiscard]] virtual std::size_t memory_bytes() const noexcept = 0;
+
+protected:
+    std::vector<int> block_;      ///< per owned row: its block (empty: one block)
+    bool blocks_changed_ = true;  ///< the kept pattern is to be rebuilt
+    std::int64_t kept_for_ = -1;  ///< n_blocks() of the matrix the kept pattern was built for
 };
 
 /// Block ILU(0) of the owned rows and columns of a BlockMatrix (ghost columns dropped), with
@@ -112,7 +144,9 @@ private:
     std::vector<std::int64_t> rows_;
     std::vector<Index> cols_;
     std::vector<std::int64_t> diag_;
-    std::vector<float> values_;  ///< L and U blocks, inverted diagonal blocks
+    std::vector<float> values_;      ///< L and U blocks, inverted diagonal blocks
+    std::vector<std::int64_t> pos_;  ///< with blocks: the kept blocks' positions in A
+    std::vector<float> kept_;        ///< with blocks: their values, gathered
 };
 
 /// Block symmetric Gauss-Seidel of the owned rows and columns of a BlockMatrix: M = (D + L)
@@ -129,6 +163,11 @@ public:
 private:
     const BlockMatrix* A_ = nullptr;
     std::vector<float> dinv_;  ///< inverted diagonal blocks, row-major
+    // With blocks (`set_blocks`): the pattern of the kept blocks, their positions in A and
+    // their values (a copy as large as the kept part of A).
+    std::vector<std::int64_t> rows_, diag_, pos_;
+    std::vector<Index> cols_;
+    std::vector<float> values_;
 };
 
 /// Settings of `fgmres`.

@@ -101,6 +101,12 @@ struct SolverSettings {
     /// Preconditioner of the linear solves: block ILU(0) (fewer iterations) or block symmetric
     /// Gauss-Seidel (no factor stored: about 1.4 kB less per node).
     PreconditionerKind preconditioner = PreconditionerKind::sgs;
+    /// Blocks of the preconditioner (`solver.preconditioner_blocks`): 0, one per process
+    /// (block Jacobi across processes, the default); N >= 1, the N parts of the METIS
+    /// partition an N-process run distributes, also on one process, so that 1 and N processes
+    /// precondition alike and give the same history to round-off growth (docs/parallel.md).
+    /// N needs 1 or N processes.
+    int preconditioner_blocks = 0;
     int max_backoffs = 6;  ///< divergence recoveries before giving up
     /// InputError naming the setting for a value out of range.
     void validate() const;
