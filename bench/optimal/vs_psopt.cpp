@@ -17,8 +17,8 @@
 //
 // Output, one line of key=value pairs:
 //   manta problem=... mode=... status=... objective=... iterations=... passes=... nodes=...
-//   solve_cpu_s=... solve_wall_s=... node_list=a,b,... (final LGL points per segment, phases
-//   separated by '/')
+//   solve_cpu_s=... solve_wall_s=... max_error=... (the last pass's error estimate, -1 on a fixed
+//   mesh) node_list=a,b,... (final LGL points per segment, phases separated by '/')
 
 #include <chrono>
 #include <cstdio>
@@ -104,6 +104,7 @@ struct Result {
     int nodes = 0;
     double cpu = 0.0;
     std::string nodes_text;
+    double max_error = -1.0;  ///< the refinement's last error estimate (-1: fixed mesh)
 };
 
 Result single(const Model& model, const Guess& guess, bool adaptive, int n) {
@@ -128,6 +129,7 @@ Result single(const Model& model, const Guess& guess, bool adaptive, int n) {
     }
     r.nodes = total(a.mesh);
     r.nodes_text = node_list(a.mesh);
+    r.max_error = a.passes.empty() ? -1.0 : a.passes.back().max_error;
     return r;
 }
 
@@ -169,6 +171,7 @@ Result schwartz(bool adaptive, int n) {
         r.nodes += total(a.meshes[k]);
         r.nodes_text += (k > 0 ? "/" : "") + node_list(a.meshes[k]);
     }
+    r.max_error = a.passes.empty() ? -1.0 : a.passes.back().max_error;
     return r;
 }
 
@@ -206,9 +209,9 @@ int run(const std::string& problem, const std::string& mode, int n) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
     std::printf(
         "manta problem=%s mode=%s status=%s objective=%.12g iterations=%d passes=%d nodes=%d "
-        "solve_cpu_s=%.4f solve_wall_s=%.4f node_list=%s\n",
+        "solve_cpu_s=%.4f solve_wall_s=%.4f max_error=%.3e node_list=%s\n",
         problem.c_str(), mode.c_str(), r.status.c_str(), r.objective, r.iterations, r.passes,
-        r.nodes, r.cpu, wall, r.nodes_text.c_str());
+        r.nodes, r.cpu, wall, r.max_error, r.nodes_text.c_str());
     return 0;
 }
 
