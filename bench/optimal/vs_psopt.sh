@@ -149,7 +149,7 @@ for c in $cases; do
     IFS=: read -r problem mode nodes <<< "$c"
     ref=$(reference "$problem")
     exe=$(psopt_exe "$problem" "$mode" "$nodes") || exit 1
-    for r in $(seq 1 "$rounds"); do
+    for _ in $(seq 1 "$rounds"); do
         # MANTA
         l0=$(load)
         "$timer" -f "%e %U %S" -o "$work/manta.time" "$manta" "$problem" "$mode" "$nodes" > "$work/manta.log" 2>&1 || true
