@@ -75,6 +75,12 @@ pkg-config --exists ipopt eigen3 || { echo "vs_psopt.sh: pkg-config does not fin
 adolc_lib=$(ls -d "$adolc"/lib64 "$adolc"/lib 2>/dev/null | head -n 1 || true)
 [ -f "$adolc/include/adolc/adolc.h" ] && [ -n "$adolc_lib" ] ||
     { echo "vs_psopt.sh: no ADOL-C in $adolc (--adolc PREFIX: include/adolc/adolc.h, lib64 or lib)" >&2; exit 1; }
+for c in $cases; do
+    IFS=: read -r problem mode nodes <<< "$c"
+    case "$problem" in brachistochrone|climb|schwartz) ;; *) echo "vs_psopt.sh: case '$c': problem '$problem', expected brachistochrone, climb or schwartz" >&2; exit 2 ;; esac
+    case "$mode" in fixed|adaptive) ;; *) echo "vs_psopt.sh: case '$c': mode '$mode', expected fixed or adaptive" >&2; exit 2 ;; esac
+    [[ "$nodes" =~ ^[0-9]+$ ]] && [ "$nodes" -ge 2 ] || { echo "vs_psopt.sh: case '$c': nodes '$nodes', expected an integer >= 2" >&2; exit 2; }
+done
 if [ -z "$work" ]; then
     work=$(mktemp -d)
     [ "$keep" = 1 ] || trap 'rm -rf "$work"' EXIT
