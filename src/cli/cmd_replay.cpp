@@ -200,8 +200,6 @@ int run_replay_command(const ReplayArgs& a) {
                 "VALUE > 0",
                 t));
     }
-    // The replay writes --out (checkpoints included) from here on: one command at a time.
-    const core::RunFolderLock lock(a.out, "replay");
 
     std::unique_ptr<aero::AeroSource> source;
     std::string source_size;
@@ -271,6 +269,9 @@ int run_replay_command(const ReplayArgs& a) {
             p.resumed_from >= 0 ? fmt::format(" (resumed at step {})", p.resumed_from).c_str() : "",
             tty ? "   " : "\n");
     };
+    // The replay writes --out (checkpoints included) from here on: one command at a time. (The
+    // source is made first: a mesh or configuration it refuses leaves no folder behind.)
+    const core::RunFolderLock lock(a.out, "replay");
     const replay::ReplayOutcome oc = replay::run_replay(*source, *tables, tr, s, a.out);
     if (tty && printed) std::fprintf(stderr, "\n");
     const nlohmann::json& j = oc.summary;

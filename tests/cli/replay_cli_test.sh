@@ -196,6 +196,10 @@ bad_input "half model for a rolling trajectory" \
 bad_input "aileron without a control surface" \
     "lat.csv: the control mode 'aileron' deflects \(up to .* deg at t = 0.5 s\) and the default CFD configuration with the mesh companion .*same/box.mesh.yaml has no control surface of that mode \(its control surfaces: elevator\)" \
     --source euler --trajectory "$work/lat.csv" --mesh "$work/same/box.su2"
+sed 's/marker: flap/marker: elev/' "$work/box.yaml" > "$work/box_elev.yaml"
+bad_input "control surface on a marker the mesh lacks" \
+    "box_elev.yaml:5: key 'control_surfaces\[0\]': marker 'elev' is not a marker of the mesh .*box.su2; expected one of flap, wall, farfield" \
+    --source euler --trajectory "$work/traj.csv" --mesh "$work/box.su2" --cfd-config "$work/box_elev.yaml"
 { printf 'flow: {mach: 0.3}\n'; cat "$work/box.yaml"; } > "$work/box_mach.yaml"
 bad_input "flow.mach other than the entry Mach" \
     "box_mach.yaml: flow.mach 0.3; the trajectory .*traj.csv enters at Mach 0.4565.*; expected no flow.mach" \
