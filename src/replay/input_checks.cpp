@@ -111,8 +111,14 @@ std::vector<std::string> check_tables(const TablesFacts& tables, const AircraftF
                                       const Trajectory& tr) {
     std::vector<std::string> warnings;
     // The aircraft the trajectory was flown by (`# aircraft:` of manta simulate / optimise).
-    if (const std::string flown = tr.meta("aircraft");
-        !flown.empty() && !aircraft.name.empty() && flown != aircraft.name)
+    // `manta optimise` writes the aircraft file there, often a copy (the demo's inputs/): only a
+    // name is compared.
+    const std::string flown = tr.meta("aircraft");
+    const bool a_file =
+        flown.find('/') != std::string::npos || flown.find('\\') != std::string::npos ||
+        (flown.size() > 5 &&
+         (flown.ends_with(".yaml") || flown.ends_with(".yml") || flown.ends_with(".avl")));
+    if (!flown.empty() && !a_file && !aircraft.name.empty() && flown != aircraft.name)
         warnings.push_back(fmt::format(
             "warning: {}: a trajectory of the aircraft '{}' ('# aircraft:'), replayed with the "
             "aircraft file {} ('{}')",
