@@ -21,8 +21,12 @@
 #include "manta/aircraft/aircraft.hpp"
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
+#include "manta/euler/config.hpp"
 #include "manta/euler/source.hpp"
 #include "manta/euler/surface_snapshot.hpp"
+#include "manta/mesh/companion.hpp"
+#include "manta/replay/input_checks.hpp"
+#include "manta/replay/motion_builder.hpp"
 #include "manta/replay/replay.hpp"
 #include "manta/replay/trajectory.hpp"
 #include "manta/vlm/source.hpp"
@@ -54,6 +58,72 @@ struct ReplayArgs {
     bool restart = false, keep_checkpoint = false, no_viscous = false, json = false;
 };
 
+replay::ReferenceFacts reference_facts(double area, double chord, double span,
+                                       const Eigen::Vector3d& moment_point) {
+    return {area, chord, span, {moment_point.x(), moment_point.y(), moment_point.z()}};
+}
+
+replay::CompanionFacts companion_facts(const mesh::Companion& c, const fs::path& file) {
+    replay::CompanionFacts f;
+    f.file = file.string();
+    f.aircraft_name = c.aircraft_name;
+    f.half_model = c.model == "half";
+    f.reference = reference_facts(c.reference.aircraft_area, c.reference.chord, c.reference.span,
+                                  c.reference.moment_point);
+    for (const auto& s : c.control_surfaces) f.control_modes.push_back(s.mode);
+    return f;
+}
+
+/// The Euler source's set-up as `EulerSource::from_files` will make it (the configuration with
+/// the mesh companion's defaults), read without the mesh: the facts replay::check_euler_setup
+/// compares before the mesh is read and the CFD starts.
+replay::EulerFacts euler_facts(const std::string& mesh_file, const std::string& config_file) {
+    euler::CfdConfig cfg =
+        config_file.empty() ? euler::CfdConfig{} : euler::read_cfd_config(config_file);
+    const auto companion = mesh::find_companion(mesh_file);
+    euler::apply_mesh_companion(cfg, mesh_file);
+    replay::EulerFacts f;
+    f.mesh = mesh_file;
+    f.config = config_file.empty() ? std::string("the default CFD configuration") : config_file;
+    if (companion) f.companion = companion_facts(*companion, mesh::companion_path(mesh_file));
+    f.mach = cfg.mach;
+    if (cfg.alpha) f.ignored_flow_keys.push_back("alpha");
+    if (cfg.beta) f.ignored_flow_keys.push_back("beta");
+    if (cfg.p_hat) f.ignored_flow_keys.push_back("p_hat");
+    if (cfg.q_hat) f.ignored_flow_keys.push_back("q_hat");
+    if (cfg.r_hat) f.ignored_flow_keys.push_back("r_hat");
+    f.reference_given = cfg.reference_given;
+    f.reference = reference_facts(cfg.reference.area, cfg.reference.chord, cfg.reference.span,
+                                  cfg.reference.moment_point);
+    f.half_model = cfg.reference.half_model;
+    for (const auto& [name, role] : cfg.markers)
+        if (role == euler::BoundaryKind::symmetry) f.half_model = true;
+    for (const auto& c : cfg.control_surfaces) f.control_modes.push_back(c.mode);
+    return f;
+}
+
+/// The companions of the meshes a `manta tables` folder's Euler campaign made (DIR/mesh/).
+std::vector<replay::CompanionFacts> tables_mesh_companions(const std::string& tables) {
+    std::vector<replay::CompanionFacts> out;
+    if (tables.empty()) return out;
+    // The folder, or the folder of its database.yaml.
+    fs::path dir = fs::path(tables) / "mesh";
+    if (!fs::is_directory(tables)) {
+        if (fs::path(tables).filename() != "database.yaml") return out;
+        dir = fs::path(tables).parent_path() / "mesh";
+    }
+    if (!fs::is_directory(dir)) return out;
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const std::string n = e.path().filename().string();
+        if (n.size() > 10 && n.compare(n.size() - 10, 10, ".mesh.yaml") == 0)
+            files.push_back(e.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const fs::path& p : files) out.push_back(companion_facts(mesh::read_companion(p), p));
+    return out;
+}
+
 int run_replay_command(const ReplayArgs& a) {
     const bool euler = a.source == "euler";
     if (euler && a.mesh.empty())
@@ -75,6 +145,26 @@ int run_replay_command(const ReplayArgs& a) {
     const auto tables = load_tables(a.tables, def);
     const replay::Trajectory tr = replay::read_trajectory(a.trajectory);
 
+    // The inputs compared with each other before the mesh is read and anything is solved
+    // (docs/replay.md, "Bad input"): errors here, warnings printed by run_replay once its own
+    // checks have passed.
+    const replay::Trajectory replayed = a.until > 0.0 ? replay::first_seconds(tr, a.until) : tr;
+    replay::AircraftFacts aircraft_facts;
+    aircraft_facts.file = a.aircraft;
+    aircraft_facts.name = def.name;
+    aircraft_facts.reference = reference_facts(def.reference.area, def.reference.chord,
+                                               def.reference.span, def.moment_reference_geom);
+    replay::TablesFacts tables_facts;
+    tables_facts.file = a.tables;
+    tables_facts.database = tables.get();
+    tables_facts.mesh_companions = tables_mesh_companions(a.tables);
+    std::vector<std::string> warnings =
+        replay::check_tables(tables_facts, aircraft_facts, replayed);
+    if (euler)
+        for (std::string& w :
+             replay::check_euler_setup(euler_facts(a.mesh, a.cfd_config), aircraft_facts, replayed))
+            warnings.push_back(std::move(w));
+
     replay::ReplaySettings s;
     s.dt = a.dt;
     s.until = a.until;
@@ -87,6 +177,8 @@ int run_replay_command(const ReplayArgs& a) {
     s.restart = a.restart;
     s.keep_checkpoint = a.keep_checkpoint;
     s.trajectory_label = a.trajectory;
+    s.input_warnings = warnings;
+    s.warn = [](const std::string& w) { std::fprintf(stderr, "%s\n", w.c_str()); };
     for (const std::string& t : a.tolerances) {
         const auto eq = t.find('=');
         bool ok = false;
@@ -108,8 +200,6 @@ int run_replay_command(const ReplayArgs& a) {
                 "VALUE > 0",
                 t));
     }
-    // The replay writes --out (checkpoints included) from here on: one command at a time.
-    const core::RunFolderLock lock(a.out, "replay");
 
     std::unique_ptr<aero::AeroSource> source;
     std::string source_size;
@@ -179,6 +269,9 @@ int run_replay_command(const ReplayArgs& a) {
             p.resumed_from >= 0 ? fmt::format(" (resumed at step {})", p.resumed_from).c_str() : "",
             tty ? "   " : "\n");
     };
+    // The replay writes --out (checkpoints included) from here on: one command at a time. (The
+    // source is made first: a mesh or configuration it refuses leaves no folder behind.)
+    const core::RunFolderLock lock(a.out, "replay");
     const replay::ReplayOutcome oc = replay::run_replay(*source, *tables, tr, s, a.out);
     if (tty && printed) std::fprintf(stderr, "\n");
     const nlohmann::json& j = oc.summary;

@@ -244,6 +244,10 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
             cpu_before = cj.value("cpu_time_s", 0.0);
         }
     }
+    // The inputs passed every check: the caller's warnings about them, before the source's work
+    // (an Euler source's steady start) begins.
+    if (s.warn)
+        for (const std::string& w : s.input_warnings) s.warn(w);
     fs::create_directories(out);
     // Surface snapshots: a fresh run replaces those of an earlier one; a resumed run keeps those
     // up to its checkpoint and writes the rest.
@@ -417,6 +421,7 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
                   {"flight_path", rm.gamma0},
                   {"reynolds_per_metre", us.conditions.reynolds_per_metre}};
     j["tables"] = tables.info().name;
+    j["input_warnings"] = s.input_warnings;
     j["trajectory_check"] = {
         {"rate_mismatch_max", rate_mismatch},
         {"t", rate_mismatch_t},

@@ -13,28 +13,11 @@ if [ -n "$mpiexec" ] && "$mpiexec" --version 2>&1 | grep -qiE "open ?mpi|openrte
     mpiflags=(--oversubscribe --allow-run-as-root)
 fi
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
+cli_show="tail -20"
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 mesh=$shared/reference/onera_m6/mesh_ONERAM6_inv_gmsh_coarse.su2.gz
 if [ ! -f "$mesh" ]; then echo "SKIP: $mesh not found"; exit 77; fi
 
-check() {  # check NAME EXPECTED_EXIT COMMAND...
-    local name=$1 expected=$2; shift 2
-    "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
-        fail=$((fail + 1)); echo "FAIL: $name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | tail -20
-    fi
-}
-contains() {  # contains NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
-}
-one_line() {  # one_line NAME FILE
-    if [ "$(wc -l < "$2")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: not one line"; cat "$2"; fi
-}
-json() {  # json FILE EXPR: print a value of a JSON file
-    python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"
-}
 
 check "cfd --help" 0 "$manta" cfd --help
 contains "help names --mesh" "$work/out.txt" "--mesh"

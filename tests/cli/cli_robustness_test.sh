@@ -11,25 +11,14 @@ manta=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 root=$2
 work=$3
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
 ranger=$root/examples/ranger2000/aircraft.yaml
 campaigns=$root/examples/campaigns
 limit=${MANTA_CLI_TEST_LIMIT:-60}  # seconds one command may take (the unfixed program ran some far longer)
+cli_timeout=$limit cli_show="head -8" cli_contains_show="head -5"
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-check() {  # check NAME EXPECTED_EXIT COMMAND...   (stdout, stderr in $work/out.txt, err.txt)
-    local name=$1 expected=$2; shift 2
-    timeout "$limit" "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then ok; else
-        bad "$name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | head -8
-    fi
-}
-contains() {  # contains NAME FILE PATTERN (extended regex)
-    if grep -qE -- "$3" "$2"; then ok; else bad "$1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -5; fi
-}
 lacks() {  # lacks NAME FILE PATTERN (extended regex)
     if grep -qE -- "$3" "$2"; then bad "$1: '$3' in $(basename "$2")"; sed 's/^/    /' "$2" | head -5; else ok; fi
 }

@@ -11,22 +11,8 @@ manta=$1
 src=$2
 work=$3
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
-check() {  # check NAME EXPECTED_EXIT COMMAND...
-    local name=$1 expected=$2; shift 2
-    "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
-        fail=$((fail + 1)); echo "FAIL: $name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | tail -30
-    fi
-}
-contains() {  # contains NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | tail -10; fi
-}
-lacks() {  # lacks NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then fail=$((fail + 1)); echo "FAIL: $1: '$3' in $(basename "$2")"; else pass=$((pass + 1)); fi
-}
+cli_show="tail -30" cli_contains_show="tail -10"
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 demo=$work/demo
 
 t0=$(date +%s)
@@ -41,11 +27,23 @@ for f in report.html run.json aircraft.yaml inputs/aircraft.yaml inputs/campaign
     tables/mesh/aircraft_full_coarse.mesh.yaml tables/database.yaml tables/dynamic.csv \
     fly/summary.json manoeuvres/level_turn/summary.json manoeuvres/level_turn/trajectory_dense.csv \
     replay/level_turn/motion.csv replay/level_turn/comparison.csv replay/level_turn/summary.json \
-    logs/tables.log logs/optimise_level_turn.log logs/replay_level_turn.log logs/report.log; do
+    logs/tables.log logs/optimise_level_turn.log logs/replay_level_turn.log logs/report.log \
+    replay/level_turn/surface/wall.csv replay/level_turn/surface/index.csv \
+    replay-vlm/level_turn/motion.csv replay-vlm/level_turn/comparison.csv \
+    replay-vlm/level_turn/summary.json logs/replay_vlm_level_turn.log; do
     if [ -s "$demo/$f" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: demo output $f missing"; fi
 done
 contains "the replay was Euler on the campaign's mesh" "$demo/logs/replay_level_turn.log" \
     "replay .*--source euler .*--mesh .*tables/mesh/aircraft_full_coarse.su2 .*--until 2"
+# The lattice replay of the same 2 s beside the Euler one, and the report's sources overlay and
+# surface Cp pictures (docs/demo.md, docs/report.md#surface-cp).
+contains "the lattice replay against the same tables" "$demo/logs/replay_vlm_level_turn.log" \
+    "replay .*--source vlm .*--tables .*tables/database.yaml .*--until 2"
+contains "lattice replay summary" "$demo/replay-vlm/level_turn/summary.json" '"source": "vlm"'
+contains "report: sources on the same axes" "$demo/report.html" \
+    "Sources on the same axes: euler replay, table, vlm replay"
+contains "report: Cp heading" "$demo/report.html" "<h3>Surface Cp</h3>"
+contains "report: Cp picture" "$demo/report.html" '<svg xmlns="http://www.w3.org/2000/svg" class="cp-picture"'
 if python3 - "$demo" <<'PY'
 import csv, json, sys
 d = sys.argv[1]
@@ -58,6 +56,13 @@ for k in ("tables", "fly", "optimise_total", "replay_total", "report", "total"):
     assert k in run["timings_s"], k
 s = json.load(open(d + "/replay/level_turn/summary.json"))
 assert s["source"] == "euler", s["source"]
+# The inputs fit each other (docs/replay.md, "Bad input"): warnings of extrapolated tables only.
+for w in s["input_warnings"]:
+    assert w.startswith("warning: ") and "outside the tables' range" in w, w
+    print(w)
+assert s["snapshots"]["count"] >= 2, s["snapshots"]
+v = json.load(open(d + "/replay-vlm/level_turn/summary.json"))
+assert v["source"] == "vlm" and v["until"] == 2.0, (v["source"], v["until"])
 assert s["until"] == 2.0 and s["steps"] == 40 and abs(s["dt"] - 0.05) < 1e-12, (s["until"], s["steps"], s["dt"])
 rows = list(csv.DictReader(open(d + "/replay/level_turn/comparison.csv")))
 assert len(rows) == 41 and abs(float(rows[-1]["t"]) - 2.0) < 1e-9, (len(rows), rows[-1]["t"])

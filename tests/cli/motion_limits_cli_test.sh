@@ -11,24 +11,10 @@ manta=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 root=$2
 work=$3
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
+cli_timeout=120 cli_show="head -8" cli_contains_show="head -5"
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 ranger=$root/examples/ranger2000/aircraft.yaml
 
-check() {  # check NAME EXPECTED_EXIT COMMAND...   (stdout, stderr in $work/out.txt, err.txt)
-    local name=$1 expected=$2; shift 2
-    timeout 120 "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
-        fail=$((fail + 1))
-        echo "FAIL: $name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | head -8
-    fi
-}
-contains() {  # contains NAME FILE PATTERN (extended regex)
-    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else
-        fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -5
-    fi
-}
 absent() {  # absent NAME PATH: nothing there
     if [ -e "$2" ]; then fail=$((fail + 1)); echo "FAIL: $1: $2 exists"; else pass=$((pass + 1)); fi
 }

@@ -7,27 +7,9 @@ manta=$1
 root=$2
 work=$3
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 ranger=$root/examples/ranger2000/aircraft.yaml
 
-check() {  # check NAME EXPECTED_EXIT COMMAND...
-    local name=$1 expected=$2; shift 2
-    "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then
-        pass=$((pass + 1))
-    else
-        fail=$((fail + 1))
-        echo "FAIL: $name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | head -20
-    fi
-}
-contains() {  # contains NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
-}
-one_line() {  # one_line NAME FILE: exactly one line
-    if [ "$(wc -l < "$2")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: not one line"; cat "$2"; fi
-}
 coarse=(--n-chord 3 --strip-width 0.08 --dt 0.05 --wake-length 5)
 
 check "replay --help" 0 "$manta" replay --help
@@ -179,6 +161,80 @@ one_line "dt one line" "$work/err.txt"
 check "--mesh without euler" 2 "$manta" replay --trajectory "$work/traj.csv" --aircraft "$ranger" --mesh "$work/box.su2" --out "$work/bad"
 one_line "--mesh without euler one line" "$work/err.txt"
 if [ ! -e "$work/bad/comparison.csv" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: an euler error wrote output"; fi
+
+# Bad input of the Euler replay (docs/replay.md, "Bad input"): found before the mesh is read and
+# the steady start begins, one line (exit 2) naming the file, the value and what was expected,
+# nothing written. Companion files beside copies of the box (the Ranger's reference values, or
+# another aircraft's) and tables whose Mach range or name is another's.
+companion() {  # companion FILE NAME MODEL AREA AIRCRAFT_AREA
+    printf '%s\n' 'schema_version: 1' 'mesh: "box.su2"' 'aircraft: "x.yaml"' "aircraft_name: \"$2\"" \
+        "model: $3" 'level: coarse' 'markers: {flap: wall, wall: wall, farfield: farfield}' \
+        'reference:' "  area: $4" "  aircraft_area: $5" '  chord: 1.545' '  span: 10.46' \
+        '  moment_point: [4.911169301, 0, 0.1225802693]' '  cg_case: "mtow"' '  cg: [4.9, 0, 0.12]' \
+        'control_surfaces:' '  - {mode: elevator, marker: flap, hinge: [[1, 0.25, 0], [1, 0.75, 0]], gain: 1}' > "$1"
+}
+for d in other half same; do mkdir -p "$work/$d"; cp "$work/box.su2" "$work/$d/box.su2"; done
+companion "$work/other/box.mesh.yaml" "Other jet" full 20 20
+companion "$work/half/box.mesh.yaml" "Ranger 2000" half 7.75 15.5
+companion "$work/same/box.mesh.yaml" "Ranger 2000" full 15.5 15.5
+printf 't,aileron_deg\n0,0\n0.5,-2\n1,2\n1.5,0\n' > "$work/ail.csv"
+check "simulate aileron doublet" 0 "$manta" simulate --aircraft "$ranger" --inputs "$work/ail.csv" --duration 2 --out "$work/lat.csv"
+bad_input() {  # bad_input NAME PATTERN REPLAY_ARGS...: exit 2, one line matching, nothing written
+    local name=$1 pattern=$2; shift 2
+    rm -rf "$work/bad"
+    check "$name" 2 "$manta" replay --aircraft "$ranger" --out "$work/bad" "$@"
+    contains "$name: message" "$work/err.txt" "$pattern"
+    one_line "$name: one line" "$work/err.txt"
+    if [ ! -e "$work/bad" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name wrote $work/bad"; fi
+}
+bad_input "mesh of another aircraft" \
+    "other/box.su2: a mesh of the aircraft 'Other jet' \(.*other/box.mesh.yaml has reference area 20 m\^2\); expected a mesh of the aircraft file .*aircraft.yaml \('Ranger 2000': area 15.5 m\^2" \
+    --source euler --trajectory "$work/traj.csv" --mesh "$work/other/box.su2"
+bad_input "half model for a rolling trajectory" \
+    "half/box.su2: a half model \(.*half/box.mesh.yaml: model: half\), whose symmetry plane mirrors the flow; the trajectory .*lat.csv has sideslip .* deg at t = .* s; expected a full-model mesh" \
+    --source euler --trajectory "$work/lat.csv" --mesh "$work/half/box.su2"
+bad_input "aileron without a control surface" \
+    "lat.csv: the control mode 'aileron' deflects \(up to .* deg at t = 0.5 s\) and the default CFD configuration with the mesh companion .*same/box.mesh.yaml has no control surface of that mode \(its control surfaces: elevator\)" \
+    --source euler --trajectory "$work/lat.csv" --mesh "$work/same/box.su2"
+sed 's/marker: flap/marker: elev/' "$work/box.yaml" > "$work/box_elev.yaml"
+bad_input "control surface on a marker the mesh lacks" \
+    "box_elev.yaml:5: key 'control_surfaces\[0\]': marker 'elev' is not a marker of the mesh .*box.su2; expected one of flap, wall, farfield" \
+    --source euler --trajectory "$work/traj.csv" --mesh "$work/box.su2" --cfd-config "$work/box_elev.yaml"
+{ printf 'flow: {mach: 0.3}\n'; cat "$work/box.yaml"; } > "$work/box_mach.yaml"
+bad_input "flow.mach other than the entry Mach" \
+    "box_mach.yaml: flow.mach 0.3; the trajectory .*traj.csv enters at Mach 0.4565.*; expected no flow.mach" \
+    --source euler --trajectory "$work/traj.csv" --mesh "$work/box.su2" --cfd-config "$work/box_mach.yaml"
+printf 'unsteady: {max_inner: 3}\nmarkers: {flap: wall, wall: wall, farfield: farfield}\n' > "$work/box_noref.yaml"
+bad_input "no reference values" \
+    "box_noref.yaml: no reference values for the mesh .*box.su2 \(no .reference:. section and no mesh companion file; the solver's reference area 0 m\^2\)" \
+    --source euler --trajectory "$work/traj.csv" --mesh "$work/box.su2" --cfd-config "$work/box_noref.yaml"
+tab=$root/examples/ranger2000/tables-euler-half
+mkdir -p "$work/tab_other/mesh"; cp "$tab/database.yaml" "$work/tab_other/"; cp "$work/other/box.mesh.yaml" "$work/tab_other/mesh/x_full_coarse.mesh.yaml"
+bad_input "tables of another aircraft" \
+    "tab_other: tables of the aircraft 'Other jet' \(their mesh companion .*x_full_coarse.mesh.yaml has reference area 20 m\^2\); expected tables of the aircraft file" \
+    --source euler --trajectory "$work/traj.csv" --mesh "$work/same/box.su2" --tables "$work/tab_other"
+sed 's/values: \[0.2, 0.3, 0.4, 0.5, 0.6\]/values: [0.7, 0.8, 0.9, 1.0, 1.1]/' "$tab/database.yaml" > "$work/db_far.yaml"
+bad_input "Mach far outside the tables (euler)" \
+    "traj.csv: Mach 0.455.* at t = 2 s \(.*traj.csv:[0-9]+\) is outside the tables' Mach range 0.7 to 1.1 of .*db_far.yaml by 0.24.*; expected a trajectory within 0.1" \
+    --source euler --trajectory "$work/traj.csv" --mesh "$work/same/box.su2" --tables "$work/db_far.yaml"
+bad_input "Mach far outside the tables (vlm)" "is outside the tables' Mach range 0.7 to 1.1" \
+    --trajectory "$work/traj.csv" --tables "$work/db_far.yaml" "${coarse[@]}"
+# Warnings, one line each on stderr once the replay's own checks have passed, and in summary.json:
+# tables slightly beyond the trajectory's Mach, a database named for another aircraft, the box's
+# own reference in its configuration.
+sed -e 's/values: \[0.2, 0.3, 0.4, 0.5, 0.6\]/values: [0.5, 0.55, 0.6, 0.65, 0.7]/' \
+    -e 's/name: Ranger 2000 (Euler, half model)/name: F-16 (Euler)/' "$tab/database.yaml" > "$work/db_near.yaml"
+check "warnings" 0 "$manta" replay --aircraft "$ranger" --out "$work/warn" --source euler --trajectory "$work/traj.csv" --mesh "$work/box.su2" --cfd-config "$work/box.yaml" --tables "$work/db_near.yaml" --dt 0.1
+contains "warning: Mach near the tables" "$work/err.txt" "^warning: .*traj.csv: Mach 0.455.* is outside the tables' Mach range 0.5 to 0.7 of .*db_near.yaml by 0.04.*; the tables are extrapolated there$"
+contains "warning: another aircraft's database" "$work/err.txt" "^warning: .*db_near.yaml: the database 'F-16 \(Euler\)' does not name the aircraft 'Ranger 2000'"
+contains "warning: the configuration's reference" "$work/err.txt" "^warning: .*box.yaml: reference: reference area 1 m\^2; the aircraft file .* has area 15.5 m\^2"
+if [ "$(json "$work/warn/summary.json" 'len(j["input_warnings"])')" = 3 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: summary.json input_warnings"; cat "$work/warn/summary.json" | head -5; fi
+# A half model for a longitudinal trajectory runs (the steady start's round-off sideslip of
+# 1e-24 deg is none).
+check "half model, longitudinal" 0 "$manta" replay --aircraft "$ranger" --out "$work/half_r" --source euler --trajectory "$work/traj.csv" --mesh "$work/half/box.su2" --dt 0.1
+# The mesh companion of the aircraft: no warning.
+check "companion of the aircraft" 0 "$manta" replay --aircraft "$ranger" --out "$work/same_r" --source euler --trajectory "$work/traj.csv" --mesh "$work/same/box.su2" --dt 0.1
+lacks "no warning" "$work/err.txt" "warning"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -6,22 +6,9 @@ manta=$1
 root=$2
 work=$3
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 run=$root/tests/data/report/run
 
-check() {  # check NAME EXPECTED_EXIT COMMAND...   (stdout to out.txt, stderr to err.txt)
-    local name=$1 expected=$2; shift 2
-    "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
-        fail=$((fail + 1)); echo "FAIL: $name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | head -20
-    fi
-}
-contains() {  # contains NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else
-        fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
-}
 exists() {  # exists NAME FILE
     if [ -s "$2" ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: $2 missing or empty"; fi
 }

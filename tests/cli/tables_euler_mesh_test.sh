@@ -11,25 +11,8 @@ manta=$1
 src=$2
 work=$3
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
-check() {  # check NAME EXPECTED_EXIT COMMAND...
-    local name=$1 expected=$2; shift 2
-    "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
-        fail=$((fail + 1)); echo "FAIL: $name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | tail -20
-    fi
-}
-contains() {  # contains NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
-}
-lacks() {  # lacks NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then fail=$((fail + 1)); echo "FAIL: $1: '$3' in $(basename "$2")"; else pass=$((pass + 1)); fi
-}
-one_line() {  # one_line NAME FILE
-    if [ "$(wc -l < "$2")" -eq 1 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: not one line"; cat "$2"; fi
-}
+cli_show="tail -20"
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 
 cp "$src/examples/ranger2000/aircraft.yaml" "$work/ranger.yaml"
 printf '%s\n' 'numerics: {order: 1}' 'solver: {residual_drop: 3, max_iterations: 400}' > "$work/cfd.yaml"

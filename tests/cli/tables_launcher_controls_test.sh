@@ -20,19 +20,8 @@ if [ -n "$mpiexec" ] && "$mpiexec" --version 2>&1 | grep -qiE "open ?mpi|openrte
     mpiflags=(--oversubscribe --allow-run-as-root)
 fi
 rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
-check() {  # check NAME EXPECTED_EXIT COMMAND...
-    local name=$1 expected=$2; shift 2
-    "$@" >"$work/out.txt" 2>"$work/err.txt"
-    local code=$?
-    if [ "$code" -eq "$expected" ]; then pass=$((pass + 1)); else
-        fail=$((fail + 1)); echo "FAIL: $name: exit $code, expected $expected"
-        sed 's/^/    /' "$work/out.txt" "$work/err.txt" | tail -20
-    fi
-}
-contains() {  # contains NAME FILE PATTERN
-    if grep -qE -- "$3" "$2"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $1: '$3' not in $(basename "$2")"; sed 's/^/    /' "$2" | head -10; fi
-}
+cli_show="tail -20"
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # check, contains, ...; pass, fail
 ok() {  # ok NAME COMMAND...: the command succeeds
     local name=$1; shift
     if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; fi

@@ -84,6 +84,11 @@ struct ReplaySettings {
     /// when the run has no surface to write (then no snapshot is taken).
     std::function<bool(const aero::UnsteadyRun&, const std::filesystem::path&)> write_snapshot;
     std::function<void(const ReplayProgress&)> progress;
+    /// Warnings about the inputs (check_tables, check_euler_setup in input_checks.hpp), handed
+    /// to `warn` once the replay's own checks (time step, checkpoint) have passed and before
+    /// the source's first step, and listed in summary.json `input_warnings`.
+    std::vector<std::string> input_warnings;
+    std::function<void(const std::string&)> warn;
 };
 
 /// What `run_replay` did.
