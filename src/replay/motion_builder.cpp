@@ -12,7 +12,7 @@
 
 #include "manta/core/error.hpp"
 #include "manta/core/frames.hpp"
-#include "manta/flightdyn/atmosphere.hpp"
+#include "manta/replay/input_checks.hpp"
 
 namespace manta::replay {
 
@@ -49,22 +49,6 @@ std::array<double, 3> nearest_triple(const std::array<double, 3>& e,
         }
     }
     return best;
-}
-
-/// Mach of every trajectory row: its column, else V / a(-z) of the US 1976 atmosphere.
-std::vector<double> mach_column(const Trajectory& tr) {
-    if (!tr.mach.empty()) return tr.mach;
-    std::vector<double> m(tr.size());
-    for (std::size_t i = 0; i < tr.size(); ++i) {
-        const double h = -tr.position[2][i];
-        if (!(h >= -5000.0 && h <= 80000.0))
-            throw InputError(
-                fmt::format("{}:{}, column 'z': altitude {} m; expected -5000 to 80000 m (US 1976 "
-                            "atmosphere for the Mach number; or give a 'mach' column)",
-                            tr.source, tr.line[i], h));
-        m[i] = tr.V[i] / flightdyn::us1976(h).speed_of_sound;
-    }
-    return m;
 }
 
 Vector3d air_velocity_earth(const aero::MotionState& s) {
@@ -111,7 +95,7 @@ aero::Motion trajectory_interpolant(const Trajectory& tr) {
     m.add_mode("V", tr.V);
     m.add_mode("alpha", tr.alpha);
     m.add_mode("beta", tr.beta);
-    m.add_mode("mach", mach_column(tr));
+    m.add_mode("mach", trajectory_mach(tr));
     m.add_mode("p", tr.rates[0]);
     m.add_mode("q", tr.rates[1]);
     m.add_mode("r", tr.rates[2]);
