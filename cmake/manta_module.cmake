@@ -32,7 +32,7 @@ endfunction()
 function(manta_test)
     cmake_parse_arguments(T "" "NAME" "SOURCES;DEPS;LABELS" ${ARGN})
     add_executable(${T_NAME} ${T_SOURCES})
-    target_link_libraries(${T_NAME} PRIVATE ${T_DEPS} GTest::gtest GTest::gtest_main manta_warnings)
+    target_link_libraries(${T_NAME} PRIVATE ${T_DEPS} GTest::gtest manta_gtest_main manta_warnings)
     target_compile_definitions(${T_NAME} PRIVATE
         MANTA_SOURCE_DIR="${CMAKE_SOURCE_DIR}" MANTA_SHARED_DIR="${MANTA_SHARED_DIR}")
     if(NOT T_LABELS)
