@@ -116,6 +116,34 @@ void MultiPhaseProblem::validate() const {
                 "{}: link {}: from = to = {}, expected two different phases", w, k, L.from));
         }
     }
+    // time continuity around a cycle of links (a -> b -> ... -> a) would make the phases'
+    // durations sum to zero: a link that closes such a cycle is rejected (one link of a periodic
+    // cycle must leave its times independent)
+    {
+        std::vector<std::vector<int>> next(static_cast<std::size_t>(N));
+        for (int k = 0; k < n_links(); ++k) {
+            const Link L = link(k);
+            if (!L.time_continuity) continue;
+            std::vector<int> stack{L.to};
+            std::vector<bool> seen(static_cast<std::size_t>(N), false);
+            bool cycle = false;
+            while (!stack.empty() && !cycle) {
+                const int v = stack.back();
+                stack.pop_back();
+                if (v == L.from) cycle = true;
+                if (seen[static_cast<std::size_t>(v)]) continue;
+                seen[static_cast<std::size_t>(v)] = true;
+                for (int u : next[static_cast<std::size_t>(v)]) stack.push_back(u);
+            }
+            if (cycle) {
+                throw InputError(fmt::format(
+                    "{}: link {} (phase {} -> {}) closes a cycle of links with time continuity, "
+                    "expected time_continuity = false on one link of a cycle",
+                    w, k, L.from, L.to));
+            }
+            next[static_cast<std::size_t>(L.from)].push_back(L.to);
+        }
+    }
     const ProblemInfo& first = phases[0].model->info();
     for (int k = 1; k < N; ++k) {
         const ProblemInfo& info = phases[static_cast<std::size_t>(k)].model->info();

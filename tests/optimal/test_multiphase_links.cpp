@@ -413,6 +413,42 @@ TEST(MultiPhaseLinks, DerivativesWithTimesAndCrossPhaseMayer) {
     EXPECT_LT(bc.hessian_error, 2e-6);
 }
 
+TEST(MultiPhaseLinks, PeriodicLinkBackToTheFirstPhase) {
+    // phase 0 on [0, 1] from a free x(0) to x(1) = a, phase 1 on [1, 2] from there to a free
+    // x(2), and a link 1 -> 0 without time continuity: x_0(0) = x_1(2) = y (periodic). With
+    // Ψ = W y²/2 of phase 1's end, J = (a - y)²/2 + (y - a)²/2 + W y²/2, least at
+    // y = 2a/(2 + W). Without the periodic link: x(0) = a, y = a/(1 + W), J = W a²/(2(1 + W)).
+    const double a = 1.0, W = 2.0, y = 2.0 * a / (2.0 + W);
+    Walk first;
+    first.name = "first";
+    first.has_end = true;
+    first.end = a;
+    Walk second;
+    second.name = "second";
+    second.t0 = 1.0;
+    MultiPhaseProblem mp;
+    mp.name = "periodic";
+    mp.phases = {walk_phase(first), walk_phase(second)};
+    mp.links = {{nullptr, true, 0, 1}, {nullptr, false, 1, 0}};
+    mp.mayer = make_cross_phase_mayer(
+        {1}, [W](auto e, auto /*p*/) { return 0.5 * W * e[0].xf[0] * e[0].xf[0]; });
+    const MultiPhaseSolution s = solve(mp);
+    std::printf("periodic: x(0) %.12f (0.5), J %.12f (0.5)\n", s.phase(0).initial_state("x"),
+                s.objective);
+    ASSERT_TRUE(s.resolved()) << s.status_text;
+    EXPECT_NEAR(s.phase(0).initial_state("x"), y, 1e-8);
+    EXPECT_NEAR(s.phase(1).final_state("x"), y, 1e-8);
+    EXPECT_NEAR(s.objective, (a - y) * (a - y) + 0.5 * W * y * y, 1e-9);
+    mp.links.pop_back();
+    const MultiPhaseSolution o = solve(mp);
+    ASSERT_TRUE(o.resolved()) << o.status_text;
+    EXPECT_NEAR(o.phase(1).final_state("x"), a / (1.0 + W), 1e-8);
+    EXPECT_NEAR(o.objective, W * a * a / (2.0 * (1.0 + W)), 1e-9);
+    // with time continuity on both links the cycle is rejected
+    mp.links = {{nullptr, true, 0, 1}, {nullptr, true, 1, 0}};
+    EXPECT_THROW((void)solve(mp), manta::InputError);
+}
+
 std::vector<std::vector<std::string>> read_csv(const fs::path& file) {
     std::vector<std::vector<std::string>> rows;
     std::ifstream in(file);
@@ -558,6 +594,12 @@ TEST(MultiPhaseLinks, BadLinksAndMayerTermsAreOneLineErrors) {
     size.links[0].function = make_link(
         1, 2, {{"x", 0.0, 0.0, 1.0}}, [](auto xf, auto x0, auto, auto l) { l[0] = x0[0] - xf[0]; });
     expect(size, "takes 1 final and 2 initial states, expected 2 and 2");
+    // a cycle of time continuity
+    MultiPhaseProblem cycle = branch(1.0, 3.0);
+    cycle.links.push_back({nullptr, true, 2, 0});
+    expect(cycle,
+           "link 2 (phase 2 -> 0) closes a cycle of links with time continuity, expected "
+           "time_continuity = false on one link of a cycle");
     // cross-phase Mayer terms
     auto total = [](auto e, auto) { return e[0].tf; };
     MultiPhaseProblem m1 = sprint(0.5, 1.0);
