@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "detail/check.hpp"
 #include "manta/core/error.hpp"
+#include "manta/core/io.hpp"
 
 namespace manta::optimal {
 
@@ -59,9 +62,17 @@ double row_magnitude(const Constraint& c) {
 
 }  // namespace
 
+int MultiPhaseProblem::n_links() const {
+    return links.empty() ? std::max(0, n_phases() - 1) : static_cast<int>(links.size());
+}
+
 Link MultiPhaseProblem::link(int k) const {
-    if (links.empty()) return Link{};
-    return links.at(static_cast<std::size_t>(k));
+    Link L = links.empty() ? Link{} : links.at(static_cast<std::size_t>(k));
+    if (L.from == -1 && L.to == -1) {
+        L.from = k;
+        L.to = k + 1;
+    }
+    return L;
 }
 
 void MultiPhaseProblem::validate() const {
@@ -74,11 +85,64 @@ void MultiPhaseProblem::validate() const {
         ph.model->info().validate();
         ph.mesh.validate();
     }
-    if (!links.empty() && static_cast<int>(links.size()) != N - 1) {
+    const bool by_position = std::all_of(links.begin(), links.end(),
+                                         [](const Link& l) { return l.from == -1 && l.to == -1; });
+    if (!links.empty() && by_position && static_cast<int>(links.size()) != N - 1) {
         throw InputError(
             fmt::format("{}: {} links for {} phases, expected {} (one per pair of "
-                        "consecutive phases) or none (continuity everywhere)",
+                        "consecutive phases) or none (continuity everywhere), or links with "
+                        "from and to set",
                         w, links.size(), N, N - 1));
+    }
+    for (std::size_t k = 0; k < links.size(); ++k) {
+        const Link& L = links[k];
+        if (L.from == -1 && L.to == -1) {
+            if (static_cast<int>(k) + 1 >= N) {
+                throw InputError(fmt::format(
+                    "{}: link {} is by position (from = to = -1), phase {} to {}, but there are "
+                    "{} phases; expected from and to set for it",
+                    w, k, k, k + 1, N));
+            }
+            continue;
+        }
+        if (L.from < 0 || L.from >= N || L.to < 0 || L.to >= N) {
+            throw InputError(fmt::format(
+                "{}: link {}: from = {} and to = {}, expected phase indices in [0, {}] (or both "
+                "-1: phase {} to {})",
+                w, k, L.from, L.to, N - 1, k, k + 1));
+        }
+        if (L.from == L.to) {
+            throw InputError(fmt::format(
+                "{}: link {}: from = to = {}, expected two different phases", w, k, L.from));
+        }
+    }
+    // time continuity around a cycle of links (a -> b -> ... -> a) would make the phases'
+    // durations sum to zero: a link that closes such a cycle is rejected (one link of a periodic
+    // cycle must leave its times independent)
+    {
+        std::vector<std::vector<int>> next(static_cast<std::size_t>(N));
+        for (int k = 0; k < n_links(); ++k) {
+            const Link L = link(k);
+            if (!L.time_continuity) continue;
+            std::vector<int> stack{L.to};
+            std::vector<bool> seen(static_cast<std::size_t>(N), false);
+            bool cycle = false;
+            while (!stack.empty() && !cycle) {
+                const int v = stack.back();
+                stack.pop_back();
+                if (v == L.from) cycle = true;
+                if (seen[static_cast<std::size_t>(v)]) continue;
+                seen[static_cast<std::size_t>(v)] = true;
+                for (int u : next[static_cast<std::size_t>(v)]) stack.push_back(u);
+            }
+            if (cycle) {
+                throw InputError(fmt::format(
+                    "{}: link {} (phase {} -> {}) closes a cycle of links with time continuity, "
+                    "expected time_continuity = false on one link of a cycle",
+                    w, k, L.from, L.to));
+            }
+            next[static_cast<std::size_t>(L.from)].push_back(L.to);
+        }
     }
     const ProblemInfo& first = phases[0].model->info();
     for (int k = 1; k < N; ++k) {
@@ -118,12 +182,44 @@ void MultiPhaseProblem::validate() const {
                             phase_name(*this, sense_phase), a ? "maximised" : "minimised"));
         }
     }
-    for (int k = 0; k + 1 < N; ++k) {
-        const ProblemInfo& a = phases[static_cast<std::size_t>(k)].model->info();
-        const ProblemInfo& b = phases[static_cast<std::size_t>(k) + 1].model->info();
-        const std::string lk = fmt::format("{}: link {} ({} -> {})", w, k, phase_name(*this, k),
-                                           phase_name(*this, k + 1));
+    if (mayer) {
+        const std::vector<int>& mp = mayer->phases();
+        if (mp.empty()) {
+            throw InputError(w +
+                             ": the cross-phase Mayer term lists no phases, expected at least one");
+        }
+        for (std::size_t i = 0; i < mp.size(); ++i) {
+            if (mp[i] < 0 || mp[i] >= N) {
+                throw InputError(fmt::format(
+                    "{}: the cross-phase Mayer term's phase {} is {}, expected a phase index in "
+                    "[0, {}]",
+                    w, i, mp[i], N - 1));
+            }
+            if (std::find(mp.begin(), mp.begin() + static_cast<std::ptrdiff_t>(i), mp[i]) !=
+                mp.begin() + static_cast<std::ptrdiff_t>(i)) {
+                throw InputError(
+                    fmt::format("{}: the cross-phase Mayer term lists phase {} twice, expected "
+                                "each phase once",
+                                w, mp[i]));
+            }
+        }
+        if (sense_phase >= 0) {
+            const bool a = phases[static_cast<std::size_t>(sense_phase)].model->info().maximise;
+            if (mayer->maximise() != a) {
+                throw InputError(fmt::format(
+                    "{}: the cross-phase Mayer term is {} and {} {}, expected one sense for "
+                    "the sum of the objectives",
+                    w, mayer->maximise() ? "maximised" : "minimised",
+                    phase_name(*this, sense_phase), a ? "maximised" : "minimised"));
+            }
+        }
+    }
+    for (int k = 0; k < n_links(); ++k) {
         const Link L = link(k);
+        const ProblemInfo& a = phases[static_cast<std::size_t>(L.from)].model->info();
+        const ProblemInfo& b = phases[static_cast<std::size_t>(L.to)].model->info();
+        const std::string lk = fmt::format("{}: link {} ({} -> {})", w, k,
+                                           phase_name(*this, L.from), phase_name(*this, L.to));
         if (L.time_continuity) {
             const Bounds tf = a.final_time, t0 = b.initial_time;
             if (std::max(tf.lower, t0.lower) > std::min(tf.upper, t0.upper)) {
@@ -131,7 +227,7 @@ void MultiPhaseProblem::validate() const {
                     "{}: tf in [{:g}, {:g}] and the next t0 in [{:g}, {:g}] do not overlap, "
                     "expected overlapping bounds for t0_{} = tf_{} (set the next phase's "
                     "initial_time free or equal)",
-                    lk, tf.lower, tf.upper, t0.lower, t0.upper, k + 1, k));
+                    lk, tf.lower, tf.upper, t0.lower, t0.upper, L.to, L.from));
             }
         }
         if (!L.function) {
@@ -209,6 +305,61 @@ std::string summary(const MultiPhaseSolution& sol) {
     return s;
 }
 
+void write_csv(const MultiPhaseSolution& sol, const std::filesystem::path& file) {
+    // the union of the phases' columns by name, in order of first appearance, per kind
+    enum Kind { state, control, costate, path, n_kinds };
+    std::vector<std::string> names[n_kinds];
+    auto add = [&](Kind kind, const std::string& n) {
+        auto& v = names[kind];
+        if (std::find(v.begin(), v.end(), n) == v.end()) v.push_back(n);
+    };
+    for (const Solution& p : sol.phases) {
+        for (const auto& v : p.info.states) add(state, v.name);
+        for (const auto& v : p.info.controls) add(control, v.name);
+        for (const auto& v : p.info.states) add(costate, v.name);
+        for (const auto& c : p.info.path) add(path, c.name);
+    }
+    std::ostringstream out;
+    out << "phase,t,segment,node";
+    for (const auto& n : names[state]) out << ',' << n;
+    for (const auto& n : names[control]) out << ',' << n;
+    for (const auto& n : names[costate]) out << ",lambda_" << n;
+    for (const auto& n : names[path]) out << ',' << n;
+    out << '\n';
+    for (std::size_t k = 0; k < sol.phases.size(); ++k) {
+        const Solution& p = sol.phases[k];
+        // per union column, the phase's column index (-1: none)
+        auto index = [](const auto& own, const std::string& n) {
+            for (std::size_t i = 0; i < own.size(); ++i) {
+                if (own[i].name == n) return static_cast<Eigen::Index>(i);
+            }
+            return Eigen::Index{-1};
+        };
+        std::vector<Eigen::Index> at[n_kinds];
+        for (const auto& n : names[state]) at[state].push_back(index(p.info.states, n));
+        for (const auto& n : names[control]) at[control].push_back(index(p.info.controls, n));
+        for (const auto& n : names[costate]) at[costate].push_back(index(p.info.states, n));
+        for (const auto& n : names[path]) at[path].push_back(index(p.info.path, n));
+        for (std::size_t s = 0; s < p.segments.size(); ++s) {
+            const SegmentSolution& seg = p.segments[s];
+            const Eigen::MatrixXd* m[n_kinds] = {&seg.states, &seg.controls, &seg.costates,
+                                                 &seg.path};
+            for (Eigen::Index i = 0; i < seg.time.size(); ++i) {
+                out << fmt::format("{},{:.17g},{},{}", k, seg.time(i), s, i);
+                for (int kind = 0; kind < n_kinds; ++kind) {
+                    for (Eigen::Index c : at[kind]) {
+                        out << ',';
+                        if (c >= 0 && c < m[kind]->cols())
+                            out << fmt::format("{:.17g}", (*m[kind])(i, c));
+                    }
+                }
+                out << '\n';
+            }
+        }
+    }
+    core::write_file_atomic(file, out.str());  // creates the folder
+}
+
 DerivativeCheck check_derivatives(const MultiPhaseProblem& problem, double perturbation,
                                   unsigned seed) {
     detail::MultiTranscription tr(problem);
@@ -254,21 +405,51 @@ MultiTranscription::MultiTranscription(const MultiPhaseProblem& problem) : probl
     }
     const ProblemInfo& first = problem.phases[0].model->info();
     np_ = first.n_parameters();
+    bool sense_found = false;
     for (const auto& t : tr_) {
         if (t->model().has_mayer() || t->model().has_lagrange()) {
             maximise_ = t->model().info().maximise;
+            sense_found = true;
             break;
         }
     }
+    if (!sense_found && problem.mayer) maximise_ = problem.mayer->maximise();
     auto col = [&](int k, int local) { return var_off_[static_cast<std::size_t>(k)] + local; };
-    for (int k = 0; k + 1 < N; ++k) {
-        const Transcription& a = *tr_[static_cast<std::size_t>(k)];
-        const Transcription& b = *tr_[static_cast<std::size_t>(k) + 1];
+    // a Hessian entry at (ci, cj) of the whole NLP, shared with a phase's or a link's entry
+    auto hess_entry = [&](int ci, int cj) {
+        const auto key = std::make_pair(std::max(ci, cj), std::min(ci, cj));
+        auto it = hess_index.find(key);
+        if (it == hess_index.end()) {
+            it = hess_index.emplace(key, static_cast<int>(hess_row_.size())).first;
+            hess_row_.push_back(key.first);
+            hess_col_.push_back(key.second);
+        }
+        return it->second;
+    };
+    // the rows p^b - p^0 = 0 of phase b (b >= 1), once per phase
+    std::vector<bool> tied(static_cast<std::size_t>(N), false);
+    tied[0] = true;
+    auto tie_rows = [&](int b) {
+        const int row = n_rows_;
+        for (int j = 0; j < np_; ++j) {
+            jac_row_.push_back(row + j);
+            jac_col_.push_back(col(b, tr_[static_cast<std::size_t>(b)]->parameter_col(j)));
+            jac_row_.push_back(row + j);
+            jac_col_.push_back(col(0, tr_[0]->parameter_col(j)));
+        }
+        n_rows_ += np_;
+        tied[static_cast<std::size_t>(b)] = true;
+        return row;
+    };
+    for (int k = 0; k < problem.n_links(); ++k) {
+        const Link lk = problem.link(k);
+        const Transcription& a = *tr_[static_cast<std::size_t>(lk.from)];
+        const Transcription& b = *tr_[static_cast<std::size_t>(lk.to)];
         const ProblemInfo& ia = a.model().info();
         const ProblemInfo& ib = b.model().info();
-        const Link lk = problem.link(k);
         LinkRows L;
-        L.from = k;
+        L.from = lk.from;
+        L.to = lk.to;
         L.fn = lk.function;
         L.jac_start = nnz_jacobian();
         // a row between two fixed values (checked equal by validate) would leave IPOPT an
@@ -276,9 +457,9 @@ MultiTranscription::MultiTranscription(const MultiPhaseProblem& problem) : probl
         if (lk.time_continuity && !(ia.final_time.is_fixed() && ib.initial_time.is_fixed())) {
             L.time_row = n_rows_++;
             jac_row_.push_back(L.time_row);
-            jac_col_.push_back(col(k + 1, b.initial_time_col()));
+            jac_col_.push_back(col(L.to, b.initial_time_col()));
             jac_row_.push_back(L.time_row);
-            jac_col_.push_back(col(k, a.final_time_col()));
+            jac_col_.push_back(col(L.from, a.final_time_col()));
         }
         L.first_row = n_rows_;
         if (!L.fn) {
@@ -290,17 +471,24 @@ MultiTranscription::MultiTranscription(const MultiPhaseProblem& problem) : probl
                 L.constraints.push_back(
                     {"continuity " + ia.states[static_cast<std::size_t>(r)].name, 0.0, 0.0, 0.0});
                 jac_row_.push_back(row);
-                jac_col_.push_back(col(k + 1, b.initial_state_col(r)));
+                jac_col_.push_back(col(L.to, b.initial_state_col(r)));
                 jac_row_.push_back(row);
-                jac_col_.push_back(col(k, a.final_state_col(r)));
+                jac_col_.push_back(col(L.from, a.final_state_col(r)));
             }
         } else {
             L.constraints = L.fn->constraints();
             L.n = static_cast<int>(L.constraints.size());
-            for (int r = 0; r < ia.n_states(); ++r) L.cols.push_back(col(k, a.final_state_col(r)));
+            for (int r = 0; r < ia.n_states(); ++r)
+                L.cols.push_back(col(L.from, a.final_state_col(r)));
             for (int r = 0; r < ib.n_states(); ++r)
-                L.cols.push_back(col(k + 1, b.initial_state_col(r)));
+                L.cols.push_back(col(L.to, b.initial_state_col(r)));
             for (int j = 0; j < np_; ++j) L.cols.push_back(col(0, tr_[0]->parameter_col(j)));
+            if (L.fn->uses_times()) {
+                L.cols.push_back(col(L.from, a.initial_time_col()));
+                L.cols.push_back(col(L.from, a.final_time_col()));
+                L.cols.push_back(col(L.to, b.initial_time_col()));
+                L.cols.push_back(col(L.to, b.final_time_col()));
+            }
             const int nc = static_cast<int>(L.cols.size());
             for (int r = 0; r < L.n; ++r) {
                 for (int c = 0; c < nc; ++c) {
@@ -312,32 +500,45 @@ MultiTranscription::MultiTranscription(const MultiPhaseProblem& problem) : probl
                 L.hess_index.assign(static_cast<std::size_t>(nc * nc), -1);
                 for (int i = 0; i < nc; ++i) {
                     for (int j = 0; j <= i; ++j) {
-                        const int ci = L.cols[static_cast<std::size_t>(i)];
-                        const int cj = L.cols[static_cast<std::size_t>(j)];
-                        const auto key = std::make_pair(std::max(ci, cj), std::min(ci, cj));
-                        auto it = hess_index.find(key);
-                        if (it == hess_index.end()) {
-                            it = hess_index.emplace(key, static_cast<int>(hess_row_.size())).first;
-                            hess_row_.push_back(key.first);
-                            hess_col_.push_back(key.second);
-                        }
-                        L.hess_index[static_cast<std::size_t>(i * nc + j)] = it->second;
+                        L.hess_index[static_cast<std::size_t>(i * nc + j)] =
+                            hess_entry(L.cols[static_cast<std::size_t>(i)],
+                                       L.cols[static_cast<std::size_t>(j)]);
                     }
                 }
             }
         }
         n_rows_ += L.n;
-        if (np_ > 0) {
-            L.param_row = n_rows_;
-            for (int j = 0; j < np_; ++j) {
-                jac_row_.push_back(L.param_row + j);
-                jac_col_.push_back(col(k + 1, b.parameter_col(j)));
-                jac_row_.push_back(L.param_row + j);
-                jac_col_.push_back(col(0, tr_[0]->parameter_col(j)));
-            }
-            n_rows_ += np_;
-        }
+        if (np_ > 0 && !tied[static_cast<std::size_t>(L.to)]) L.param_row = tie_rows(L.to);
         links_.push_back(std::move(L));
+    }
+    untied_jac_start_ = nnz_jacobian();
+    if (np_ > 0) {
+        for (int k = 1; k < N; ++k) {
+            if (!tied[static_cast<std::size_t>(k)]) untied_.emplace_back(k, tie_rows(k));
+        }
+    }
+    if (problem.mayer) {
+        mayer_ = problem.mayer;
+        mayer_sign_ = mayer_->maximise() ? -1.0 : 1.0;
+        for (int k : mayer_->phases()) {
+            const Transcription& t = *tr_[static_cast<std::size_t>(k)];
+            const int nx = t.model().info().n_states();
+            mayer_n_states_.push_back(nx);
+            for (int r = 0; r < nx; ++r) mayer_cols_.push_back(col(k, t.initial_state_col(r)));
+            for (int r = 0; r < nx; ++r) mayer_cols_.push_back(col(k, t.final_state_col(r)));
+            mayer_cols_.push_back(col(k, t.initial_time_col()));
+            mayer_cols_.push_back(col(k, t.final_time_col()));
+        }
+        for (int j = 0; j < np_; ++j) mayer_cols_.push_back(col(0, tr_[0]->parameter_col(j)));
+        const int nc = static_cast<int>(mayer_cols_.size());
+        mayer_hess_index_.assign(static_cast<std::size_t>(nc * nc), -1);
+        for (int i = 0; i < nc; ++i) {
+            for (int j = 0; j <= i; ++j) {
+                mayer_hess_index_[static_cast<std::size_t>(i * nc + j)] =
+                    hess_entry(mayer_cols_[static_cast<std::size_t>(i)],
+                               mayer_cols_[static_cast<std::size_t>(j)]);
+            }
+        }
     }
 }
 
@@ -355,6 +556,9 @@ void MultiTranscription::bounds(double* x_l, double* x_u, double* g_l, double* g
         if (L.param_row >= 0) {
             for (int j = 0; j < np_; ++j) g_l[L.param_row + j] = g_u[L.param_row + j] = 0.0;
         }
+    }
+    for (const auto& [k, row] : untied_) {
+        for (int j = 0; j < np_; ++j) g_l[row + j] = g_u[row + j] = 0.0;
     }
 }
 
@@ -391,6 +595,10 @@ void MultiTranscription::scaling(const double* z0, Eigen::VectorXd& var_scale,
                 row_scale(L.param_row + j) = var_scale(var_off_[0] + tr_[0]->parameter_col(j));
         }
     }
+    for (const auto& [k, row] : untied_) {
+        for (int j = 0; j < np_; ++j)
+            row_scale(row + j) = var_scale(var_off_[0] + tr_[0]->parameter_col(j));
+    }
     row_scale_ = row_scale;
     if (user_obj_scale > 0.0) {
         obj_scale = user_obj_scale;
@@ -425,21 +633,35 @@ void MultiTranscription::hessian_structure(int* rows, int* cols) const {
     std::copy(hess_col_.begin(), hess_col_.end(), cols);
 }
 
+double MultiTranscription::mayer_value(const double* z) const {
+    if (!mayer_) return 0.0;
+    work_.clear();
+    for (int c : mayer_cols_) work_.push_back(z[c]);
+    return mayer_->value(work_, mayer_n_states_);
+}
+
 double MultiTranscription::user_objective(const double* z) {
     double j = 0.0;
     for (std::size_t k = 0; k < tr_.size(); ++k) j += tr_[k]->user_objective(z + var_off_[k]);
-    return j;
+    return j + mayer_value(z);
 }
 
 double MultiTranscription::objective(const double* z) {
     double j = 0.0;
     for (std::size_t k = 0; k < tr_.size(); ++k) j += tr_[k]->objective(z + var_off_[k]);
-    return j;
+    return j + mayer_sign_ * mayer_value(z);
 }
 
 void MultiTranscription::gradient(const double* z, double* grad) {
     for (std::size_t k = 0; k < tr_.size(); ++k)
         tr_[k]->gradient(z + var_off_[k], grad + var_off_[k]);
+    if (mayer_) {
+        work_.clear();
+        for (int c : mayer_cols_) work_.push_back(z[c]);
+        std::vector<double> g(mayer_cols_.size());
+        (void)mayer_->gradient(work_, mayer_n_states_, g);
+        for (std::size_t i = 0; i < g.size(); ++i) grad[mayer_cols_[i]] += mayer_sign_ * g[i];
+    }
 }
 
 void MultiTranscription::link_values(const LinkRows& L, const double* z, std::vector<double>& out,
@@ -459,11 +681,18 @@ void MultiTranscription::constraints(const double* z, double* g) {
     for (std::size_t k = 0; k < tr_.size(); ++k)
         tr_[k]->constraints(z + var_off_[k], g + row_off_[k]);
     std::vector<double> out;
+    auto ties = [&](int b, int row) {
+        const int ob = var_off_[static_cast<std::size_t>(b)];
+        for (int j = 0; j < np_; ++j) {
+            g[row + j] = z[ob + tr_[static_cast<std::size_t>(b)]->parameter_col(j)] -
+                         z[var_off_[0] + tr_[0]->parameter_col(j)];
+        }
+    };
     for (const auto& L : links_) {
-        const auto ka = static_cast<std::size_t>(L.from);
+        const auto ka = static_cast<std::size_t>(L.from), kb = static_cast<std::size_t>(L.to);
         const Transcription& a = *tr_[ka];
-        const Transcription& b = *tr_[ka + 1];
-        const int oa = var_off_[ka], ob = var_off_[ka + 1];
+        const Transcription& b = *tr_[kb];
+        const int oa = var_off_[ka], ob = var_off_[kb];
         if (L.time_row >= 0)
             g[L.time_row] = z[ob + b.initial_time_col()] - z[oa + a.final_time_col()];
         if (!L.fn) {
@@ -475,13 +704,9 @@ void MultiTranscription::constraints(const double* z, double* g) {
             link_values(L, z, out, nullptr);
             for (int r = 0; r < L.n; ++r) g[L.first_row + r] = out[static_cast<std::size_t>(r)];
         }
-        if (L.param_row >= 0) {
-            for (int j = 0; j < np_; ++j) {
-                g[L.param_row + j] =
-                    z[ob + b.parameter_col(j)] - z[var_off_[0] + tr_[0]->parameter_col(j)];
-            }
-        }
+        if (L.param_row >= 0) ties(L.to, L.param_row);
     }
+    for (const auto& [k, row] : untied_) ties(k, row);
 }
 
 void MultiTranscription::jacobian(const double* z, double* values) {
@@ -510,6 +735,13 @@ void MultiTranscription::jacobian(const double* z, double* values) {
             }
         }
     }
+    int e = untied_jac_start_;
+    for (std::size_t i = 0; i < untied_.size(); ++i) {
+        for (int j = 0; j < np_; ++j) {
+            values[e++] = 1.0;
+            values[e++] = -1.0;
+        }
+    }
 }
 
 void MultiTranscription::hessian(const double* z, double obj_factor, const double* lambda,
@@ -533,6 +765,19 @@ void MultiTranscription::hessian(const double* z, double obj_factor, const doubl
             for (int j = 0; j <= i; ++j)
                 values[L.hess_index[static_cast<std::size_t>(i * nc + j)]] +=
                     H[static_cast<std::size_t>(i * nc + j)];
+        }
+    }
+    if (mayer_ && obj_factor != 0.0) {
+        work_.clear();
+        for (int c : mayer_cols_) work_.push_back(z[c]);
+        const int nc = static_cast<int>(mayer_cols_.size());
+        H.assign(static_cast<std::size_t>(nc * nc), 0.0);
+        mayer_->hessian(work_, mayer_n_states_, H);
+        const double f = obj_factor * mayer_sign_;
+        for (int i = 0; i < nc; ++i) {
+            for (int j = 0; j <= i; ++j)
+                values[mayer_hess_index_[static_cast<std::size_t>(i * nc + j)]] +=
+                    f * H[static_cast<std::size_t>(i * nc + j)];
         }
     }
 }
@@ -572,6 +817,14 @@ void MultiTranscription::extract(const double* z, const double* lambda, int n_re
         }
         sol.links.push_back(v);
     }
+    for (const auto& [k, row] : untied_) {
+        for (int j = 0; j < np_; ++j) {
+            const auto r = static_cast<std::size_t>(row + j);
+            sol.max_link_violation =
+                std::max(sol.max_link_violation, std::max({gl[r] - g[r], g[r] - gu[r], 0.0}));
+        }
+    }
+    sol.mayer = mayer_value(z);
     sol.max_violation = std::max(sol.max_violation, sol.max_link_violation);
     sol.n_variables = n_vars_;
     sol.n_constraints = n_rows_;

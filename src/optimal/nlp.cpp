@@ -521,6 +521,7 @@ MultiPhaseSolution solve(const MultiPhaseProblem& problem, const SolverOptions& 
             }
         }
     }
+    if (!sol.converged() && !options.failure_csv.empty()) write_csv(sol, options.failure_csv);
     return sol;
 }
 

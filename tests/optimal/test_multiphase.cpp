@@ -355,6 +355,27 @@ TEST(MultiPhase, DerivativesOfTheMultiPhaseNlp) {
                 n.gradient_error, n.jacobian_error, n.hessian_error);
     EXPECT_LT(n.jacobian_error, 2e-6) << n.worst_row << " " << n.worst_col;
     EXPECT_LT(n.hessian_error, 2e-6);
+    // the same link seeing the end times (t0_a, tf_a, t0_b, tf_b), and a Mayer term of both
+    // phases' ends, on the free times of there_and_back
+    MultiPhaseProblem tt = there_and_back();
+    tt.links = {{make_link(2, 2, {{"timed x", -kInf, kInf, 1.0}, {"timed v", 0.0, 0.0, 1.0}},
+                           [](auto xf, auto x0, auto /*p*/, auto t, auto l) {
+                               using std::sin;
+                               l[0] = x0[0] - xf[0] * sin(t[1] * t[2]) + t[0];
+                               l[1] = x0[1] * t[3] - xf[1] * t[1] * t[1];
+                           }),
+                 true}};
+    tt.mayer = make_cross_phase_mayer({0, 1}, [](auto e, auto /*p*/) {
+        return e[1].tf * e[0].tf + e[0].xf[1] * e[1].x0[0] * e[1].t0;
+    });
+    const DerivativeCheck tc = check_derivatives(tt);
+    std::printf(
+        "derivative check, timed linkage and cross-phase Mayer: gradient %.1e, Jacobian "
+        "%.1e, Hessian %.1e\n",
+        tc.gradient_error, tc.jacobian_error, tc.hessian_error);
+    EXPECT_LT(tc.gradient_error, 2e-6);
+    EXPECT_LT(tc.jacobian_error, 2e-6) << tc.worst_row << " " << tc.worst_col;
+    EXPECT_LT(tc.hessian_error, 2e-6);
 }
 
 TEST(MultiPhase, SinglePhaseProblemAsOnePhase) {
