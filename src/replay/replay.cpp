@@ -371,6 +371,9 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
     const int start_step = run->current().index;
     auto last_checkpoint = clock::now();
     int done_here = 0;
+    // The time left from the steps alone: a source's start (the Euler replay's steady solution,
+    // as long as 40 of its steps on the Ranger) is not a step's cost.
+    const double steps0 = elapsed();
     while (!run->finished()) {
         compare(run->step());
         ++done_here;
@@ -382,7 +385,7 @@ ReplayOutcome run_replay(const aero::AeroSource& source, const aero::AeroDatabas
             p.n_steps = n_steps;
             p.t = run->current().t;
             p.elapsed_s = elapsed();
-            p.remaining_s = p.elapsed_s / done_here * (n_steps - step);
+            p.remaining_s = (p.elapsed_s - steps0) / done_here * (n_steps - step);
             p.resumed_from = oc.resumed_from;
             s.progress(p);
         }

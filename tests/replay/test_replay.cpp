@@ -15,10 +15,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <sstream>
+#include <thread>
+#include <vector>
 
 #include "manta/core/error.hpp"
 #include "manta/core/io.hpp"
@@ -287,6 +290,69 @@ public:
         return {};
     }
 };
+
+/// The lattice whose unsteady run spends `start_s` of wall time on its start (as the Euler
+/// source's steady solution does, lazily at the first `current()`), its steps as the lattice's.
+class SlowStart : public aero::AeroSource {
+public:
+    explicit SlowStart(double start_s) : start_s_(start_s) {}
+    std::string name() const override { return "slow-start"; }
+    std::string fingerprint() const override { return source().fingerprint(); }
+    aero::SourceResult evaluate(const aero::AeroQuery<double>& q,
+                                const aero::FlowConditions& c) const override {
+        return source().evaluate(q, c);
+    }
+    bool unsteady() const override { return true; }
+    std::unique_ptr<aero::UnsteadyRun> start_unsteady(
+        const aero::Motion& m, const aero::UnsteadySettings& s) const override {
+        return std::make_unique<Run>(source().start_unsteady(m, s), start_s_);
+    }
+
+private:
+    struct Run : aero::UnsteadyRun {
+        Run(std::unique_ptr<aero::UnsteadyRun> r, double s) : run(std::move(r)), start_s(s) {}
+        const aero::UnsteadySample& current() const override {
+            if (!started) {
+                std::this_thread::sleep_for(std::chrono::duration<double>(start_s));
+                started = true;
+            }
+            return run->current();
+        }
+        const aero::UnsteadySample& step() override {
+            (void)current();
+            return run->step();
+        }
+        bool finished() const override { return run->finished(); }
+        int n_steps() const override { return run->n_steps(); }
+        double dt() const override { return run->dt(); }
+        void save(const fs::path& f) const override { run->save(f); }
+        void restore(const fs::path& f) override {
+            run->restore(f);
+            started = true;
+        }
+        std::unique_ptr<aero::UnsteadyRun> run;
+        double start_s;
+        mutable bool started = false;
+    };
+    double start_s_;
+};
+
+TEST(Replay, TimeLeftCountsTheStepsNotTheSourcesStart) {
+    // A start of 2 s before 50 steps of a few milliseconds: the time left after the first step
+    // is the steps' (under a second), not the start's share spread over them (2 s x 49 = 98 s).
+    const replay::Trajectory tr = level_flight(1.0, 0.05, steady_alpha, zero, 0.0);
+    replay::ReplaySettings s = settings(0.02);
+    std::vector<replay::ReplayProgress> seen;
+    s.progress = [&](const replay::ReplayProgress& p) { seen.push_back(p); };
+    const replay::ReplayOutcome oc =
+        replay::run_replay(SlowStart(2.0), tables(false), tr, s, fresh("slow_start"));
+    ASSERT_TRUE(oc.completed);
+    ASSERT_EQ(seen.size(), 50u);
+    EXPECT_EQ(seen.front().step, 1);
+    EXPECT_GE(seen.front().elapsed_s, 2.0);
+    EXPECT_LT(seen.front().remaining_s, 10.0) << "the start counted as a step's cost";
+    EXPECT_EQ(seen.back().remaining_s, 0.0);
+}
 
 TEST(Replay, SourceThatCannotMoveIsAOneLineErrorAndWritesNothing) {
     const replay::Trajectory tr = level_flight(1.0, 0.05, steady_alpha, zero, 0.0);
