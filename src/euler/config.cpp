@@ -164,6 +164,8 @@ CfdConfig read(const ConfigNode& root) {
             "jacobian_interval", t.jacobian_interval, NumberSpec::range(1, 1000, "-")));
         t.cfl_max = u.number_or("cfl_max", t.cfl_max, NumberSpec::non_negative("-"));
         t.cfl_growth = u.number_or("cfl_growth", t.cfl_growth, NumberSpec::non_negative("-"));
+        t.freeze_limiter_inner = static_cast<int>(u.integer_or(
+            "freeze_limiter_inner", t.freeze_limiter_inner, NumberSpec::range(0, 1e6, "-")));
         c.output_every = static_cast<int>(
             u.integer_or("output_every", c.output_every, NumberSpec::range(0, 1e9, "steps")));
         c.mesh_motion = u.choice_or("mesh_motion", "rigid", {"rigid", "deforming"}) == "deforming"

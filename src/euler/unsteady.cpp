@@ -50,6 +50,8 @@ void UnsteadySettings::validate() const {
     need(jacobian_interval >= 1, "jacobian_interval", jacobian_interval, "an integer >= 1");
     need(cfl_max == 0.0 || (cfl_max >= 0.1 && cfl_max <= 1e12), "cfl_max", cfl_max,
          "0 (the solver's) or 0.1 .. 1e12");
+    need(freeze_limiter_inner >= 0 && freeze_limiter_inner <= 1000000, "freeze_limiter_inner",
+         freeze_limiter_inner, "0 (the solver's rules) or an integer >= 1");
     need(cfl_growth == 0.0 || (cfl_growth >= 1.0 && cfl_growth <= 100.0), "cfl_growth", cfl_growth,
          "0 (the solver's) or 1 .. 100");
 }
@@ -283,6 +285,11 @@ TimeStepRecord UnsteadySolver::advance(const Monitor& inner) {
         terms.reuse_matrix = it.iteration % t.jacobian_interval != 0;
         const StepOutcome so = step_.step(U_, it, rule, terms);
         if (so.result == StepResult::backed_off) continue;
+        if (t.freeze_limiter_inner > 0 && !it.limiter_frozen &&
+            it.iteration >= t.freeze_limiter_inner) {
+            step_.freeze_limiter(true);
+            it.limiter_frozen = true;
+        }
         rec.residual_drop = so.status.drop;
         if (so.result == StepResult::stopped) {
             rec.converged = so.decision.converged;

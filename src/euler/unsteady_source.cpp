@@ -105,6 +105,8 @@ public:
         // Only when set: the saved runs of earlier versions keep their fingerprint.
         if (t.cfl_max > 0.0) fingerprint_ += fmt::format(" cfl_max={}", t.cfl_max);
         if (t.cfl_growth > 0.0) fingerprint_ += fmt::format(" cfl_growth={}", t.cfl_growth);
+        if (t.freeze_limiter_inner > 0)
+            fingerprint_ += fmt::format(" freeze_limiter_inner={}", t.freeze_limiter_inner);
         mesh_motion_text_ = mesh_motion_words(options);
         fingerprint_ += mesh_motion_key + mesh_motion_text_;
     }

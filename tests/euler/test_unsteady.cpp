@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "manta/core/error.hpp"
 #include "manta/euler/config.hpp"
@@ -182,6 +184,66 @@ TEST(UnsteadySolver, ExtrapolatedStartAndReusedJacobianKeepTheSolution) {
     EXPECT_GT(d_extra, 0.0);  // a different iteration, not the same one
 }
 
+/// Largest change of the limiter between two sets of its values.
+double limiter_change(const std::vector<double>& a, const std::vector<double>& b) {
+    double m = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, std::abs(a[k] - b[k]));
+    return m;
+}
+
+TEST(UnsteadySolver, LimiterFrozenAfterTheSetInnerIterationsOfEachStep) {
+    // The entropy wave on the limited channel: with freeze_limiter_inner = 3 the limiter of
+    // every inner iteration after the third of a step is the third's, and the next step
+    // evaluates it afresh (it differs from the last step's frozen one); without the setting it
+    // changes from one inner iteration to the next.
+    SteadyChannel ch;
+    ch.setup.spatial.limiter = true;
+    for (const int freeze : {0, 3}) {
+        euler::UnsteadySettings t;
+        t.dt = 0.025;
+        t.inner_drop = 8;
+        t.max_inner = 30;
+        t.freeze_limiter_inner = freeze;
+        euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, t);
+        euler::NodeStates U0 = ch.U;
+        for (Eigen::Index i = 0; i < U0.cols(); ++i) {
+            const Eigen::Vector3d x = ch.mesh.node(static_cast<mesh::Index>(i));
+            const double r2 = (x.x() + 0.5) * (x.x() + 0.5) + (x.y() - 0.4) * (x.y() - 0.4);
+            euler::Vec5 W = euler::primitive(U0.col(i), 1.4);
+            W[0] *= 1.0 + 0.1 * std::exp(-r2 / 0.04);
+            U0.col(i) = euler::conservative(W, 1.4);
+        }
+        s.set_state(U0);
+        std::vector<double> at_freeze, previous_step;
+        for (int n = 0; n < 3; ++n) {
+            std::vector<double> last;
+            double after_freeze = 0.0, before_freeze = 0.0;
+            int count = 0;
+            const euler::TimeStepRecord r = s.advance([&](const euler::IterationRecord&) {
+                ++count;
+                std::vector<double> phi = s.limiter_values();
+                EXPECT_FALSE(phi.empty());
+                if (!last.empty() && (freeze == 0 || count <= freeze))
+                    before_freeze = std::max(before_freeze, limiter_change(phi, last));
+                if (freeze > 0 && count == freeze) at_freeze = phi;
+                if (freeze > 0 && count > freeze)
+                    after_freeze = std::max(after_freeze, limiter_change(phi, at_freeze));
+                last = std::move(phi);
+                return true;
+            });
+            ASSERT_GT(r.inner_iterations, 4) << "step " << n + 1;
+            EXPECT_GT(before_freeze, 0.0) << "freeze " << freeze << " step " << n + 1;
+            EXPECT_EQ(after_freeze, 0.0) << "step " << n + 1;
+            if (freeze > 0) {
+                if (!previous_step.empty()) {
+                    EXPECT_GT(limiter_change(at_freeze, previous_step), 0.0) << "step " << n + 1;
+                }
+                previous_step = at_freeze;
+            }
+        }
+    }
+}
+
 TEST(UnsteadySolver, BadSettingsAreOneLineErrors) {
     Channel ch;
     euler::UnsteadySettings t;
@@ -204,7 +266,14 @@ TEST(UnsteadySolver, BadSettingsAreOneLineErrors) {
                                                  s.jacobian_interval = 0;
                                                  return s;
                                              }(),
-                                             "jacobian_interval"}}) {
+                                             "jacobian_interval"},
+                                   std::pair{[] {
+                                                 euler::UnsteadySettings s;
+                                                 s.dt = 1;
+                                                 s.freeze_limiter_inner = -1;
+                                                 return s;
+                                             }(),
+                                             "freeze_limiter_inner"}}) {
         try {
             euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, bad);
             ADD_FAILURE() << key;

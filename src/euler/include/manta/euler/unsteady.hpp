@@ -53,6 +53,12 @@ struct UnsteadySettings {
     /// from the free stream, whose cap a configuration may have lowered for that start.
     double cfl_max = 0.0;
     double cfl_growth = 0.0;
+    /// Freeze the limiter after this many inner iterations of each step (the limiter of the
+    /// step's last state before then, released again at the next step); 0: the steady solver's
+    /// rules (`solver.freeze_limiter_drop`, `solver.freeze_limiter_stall`). On the coarse
+    /// Ranger the limiter of hundreds of nodes switched by more than 0.05 at every inner
+    /// iteration, and the residual stalled 2-2.7 orders down.
+    int freeze_limiter_inner = 0;
     /// InputError naming the setting for a value out of range.
     void validate() const;
 };
@@ -129,6 +135,9 @@ public:
     [[nodiscard]] double time() const noexcept { return t0_ + steps_ * time_settings_.dt; }
     /// The last step's inner residual R* (owned columns).
     [[nodiscard]] const NodeStates& residual() const noexcept { return step_.residual(); }
+    /// The second-order operator's limiter (5 per local node, as last evaluated or frozen);
+    /// empty without a limiter.
+    [[nodiscard]] std::vector<double> limiter_values() const { return step_.limiter_values(); }
     [[nodiscard]] int steps() const noexcept { return steps_; }
     [[nodiscard]] ForceCoefficients forces() const { return step_.forces(U_); }
     [[nodiscard]] const UnsteadySettings& time_settings() const noexcept { return time_settings_; }
