@@ -215,9 +215,10 @@ MotionStepping motion_stepping(const aero::Motion& motion, const std::string& sr
     if (!(dt > 0) || n < 1 || std::abs(n * dt - duration) > 1e-9 * duration)
         throw InputError(fmt::format(
             "{} {} s does not divide the duration {} s of {}; expected a time step of duration / "
-            "N (such as {:.6g} s)",
+            "N to 1e-9 (such as {:.17g} s, N = {:.0f})",
             dt_what, dt, duration, motion_what.empty() ? "the motion " + src : motion_what,
-            duration / std::max(1.0, std::isfinite(n) ? n : 1.0)));
+            duration / std::max(1.0, std::isfinite(n) ? n : 1.0),
+            std::max(1.0, std::isfinite(n) ? n : 1.0)));
     st.n_steps = static_cast<int>(n);
     st.dt = duration / n;  // exactly N steps
     const double c_inf = st.v0 / mach;
@@ -808,9 +809,18 @@ void CfdCase::Impl::resume_or_warm_start() {
             std::ifstream hin(in.out / "history.csv");
             std::string line;
             std::getline(hin, line);  // header
+            // A history of an earlier version has fewer columns at the end (max_res_*): its
+            // rows get empty cells there, under the present header.
+            const std::string now = history_header();
+            std::string pad;
+            if (line != now && now.starts_with(line))
+                pad.assign(
+                    static_cast<std::size_t>(std::count(
+                        now.begin() + static_cast<std::ptrdiff_t>(line.size()), now.end(), ',')),
+                    ',');
             while (std::getline(hin, line)) {
                 if (std::stoi(line.substr(0, line.find(','))) >= resumed_from) break;
-                history.push_back(line);
+                history.push_back(line + pad);
             }
         }
     } else if (!in.initial.empty()) {

@@ -29,17 +29,18 @@ void put(std::string& s, const void* p, std::size_t n) {
 std::string history_header() {
     return "iteration,wall_s,log10_res_rho,log10_res_rhou,log10_res_rhov,log10_res_rhow,"
            "log10_res_rhoE,cfl,linear_iterations,linear_residual,CL,CD,CY,CFx,CFy,CFz,CMx,CMy,"
-           "CMz";
+           "CMz,max_res_rho,max_res_x,max_res_y,max_res_z";
 }
 
 std::string history_row(const IterationRecord& r) {
     const ForceCoefficients& f = r.forces;
     return fmt::format(
         "{},{:.4f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6g},{},{:.4e},{:.10g},{:.10g},{:.10g},"
-        "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}",
+        "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.4e},{:.6g},{:.6g},{:.6g}",
         r.iteration, r.wall_s, r.log10_residual[0], r.log10_residual[1], r.log10_residual[2],
         r.log10_residual[3], r.log10_residual[4], r.cfl, r.linear_iterations, r.linear_residual,
-        f.CL, f.CD, f.CY, f.CFx, f.CFy, f.CFz, f.CMx, f.CMy, f.CMz);
+        f.CL, f.CD, f.CY, f.CFx, f.CFy, f.CFz, f.CMx, f.CMy, f.CMz, r.max_residual,
+        r.max_residual_at[0], r.max_residual_at[1], r.max_residual_at[2]);
 }
 
 void write_surface_csv(const std::filesystem::path& file, const mesh::Mesh& mesh,

@@ -344,6 +344,23 @@ StepOutcome PseudoTimeStep::step(NodeStates& U, IterationState& it, const StopRu
         sound = sound && finite(rms[k]);
     }
     const double res = rec.log10_residual[0];
+    {
+        // The node of the largest density residual, over all processes (the owner of the
+        // largest gives its coordinates; the others -inf).
+        double big = -1.0;
+        Index at = -1;
+        for (Index i = 0; i < n_owned; ++i)
+            if (const double v = std::abs(R_(0, i)); v > big) {
+                big = v;
+                at = i;
+            }
+        const double global = comm_.max(big);
+        rec.max_residual = global;
+        const double inf = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 3; ++k)
+            rec.max_residual_at[static_cast<std::size_t>(k)] =
+                comm_.max(at >= 0 && big == global ? domain_.mesh->node(at)[k] : -inf);
+    }
     if (!sound || res > it.best_log10_residual + 5.0)
         return back_off(
             !sound ? "NaN in the residual"

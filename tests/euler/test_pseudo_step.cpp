@@ -306,6 +306,38 @@ TEST(PseudoTimeStep, AStopLeavesStateAndIterationStateUnchanged) {
     }
 }
 
+TEST(PseudoTimeStep, RecordsTheLargestDensityResidualAndWhereItIs) {
+    // The converged channel flow with the state of one interior node raised by 30 %: the
+    // record's largest |R_rho| is the residual's own largest, at that node's coordinates, and
+    // that node is the perturbed one or one of its edge neighbours.
+    Channel ch;
+    ch.setup.spatial.limiter = false;
+    ch.setup.solver.residual_drop = 8;
+    euler::SteadySolver steady(ch.domain(), ch.comm, ch.setup);
+    ASSERT_TRUE(steady.solve().converged);
+    euler::NodeStates U = steady.state();
+    euler::PseudoTimeStep step(ch.domain(), ch.comm, ch.setup);
+    const mesh::Index k = ch.mesh.n_nodes() / 2;
+    U.col(k) *= 1.3;
+    euler::IterationState it = step.initial_state();
+    step.begin(it);
+    const auto go = [](const euler::StepStatus&) { return euler::StopDecision{}; };
+    const euler::StepOutcome o = step.step(U, it, go);
+    ASSERT_EQ(o.result, euler::StepResult::updated);
+    const euler::NodeStates& R = step.residual();
+    mesh::Index at = 0;
+    for (mesh::Index i = 0; i < ch.mesh.n_nodes(); ++i)
+        if (std::abs(R(0, i)) > std::abs(R(0, at))) at = i;
+    EXPECT_EQ(o.record.max_residual, std::abs(R(0, at)));
+    for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(o.record.max_residual_at[static_cast<std::size_t>(c)], ch.mesh.node(at)[c]);
+    bool near = at == k;
+    for (const auto& e : ch.dual.edges)
+        near = near || (e[0] == k && e[1] == at) || (e[1] == k && e[0] == at);
+    EXPECT_TRUE(near) << "largest residual at node " << at << ", perturbed node " << k;
+    EXPECT_GT(o.record.max_residual, 0.0);
+}
+
 /// Take `n` steps from the free stream with no stopping rule; returns the state.
 euler::NodeStates steps(euler::PseudoTimeStep& step, int n) {
     euler::NodeStates U(5, step.domain().mesh->n_nodes());

@@ -317,8 +317,15 @@ TEST(EulerUnsteadySource, BadInputIsOneLineInputError) {
     // A time step that does not divide the 0.04 s.
     aero::UnsteadySettings s;
     s.dt = 0.003;
-    one_line(error_of([&] { (void)source->start_unsteady(plate_motion(0, 1 * deg, 0, 0), s); }),
-             "time step 0.003 s does not divide the duration 0.04 s");
+    const std::string m =
+        error_of([&] { (void)source->start_unsteady(plate_motion(0, 1 * deg, 0, 0), s); });
+    one_line(m, "time step 0.003 s does not divide the duration 0.04 s");
+    // The time step it suggests is one to use as written (all its digits): 13 steps.
+    const std::size_t at = m.find("such as ");
+    ASSERT_NE(at, std::string::npos) << m;
+    s.dt = std::stod(m.substr(at + 8));
+    EXPECT_NE(m.find("N = 13"), std::string::npos) << m;
+    EXPECT_EQ(source->start_unsteady(plate_motion(0, 1 * deg, 0, 0), s)->n_steps(), 13);
     // A given time step that divides it: 16 steps.
     s.dt = 0.0025;
     EXPECT_EQ(source->start_unsteady(plate_motion(0, 1 * deg, 0, 0), s)->n_steps(), 16);

@@ -129,6 +129,12 @@ struct IterationRecord {
     double cfl = 0;
     int linear_iterations = 0;
     double linear_residual = 0;  ///< relative residual of the linear solve
+    /// The largest |R_rho| of a node (the density row of the residual whose RMS is
+    /// `log10_residual[0]`) and where that node is (mesh coordinates, at this iteration's
+    /// position on a moving mesh): a residual that stalls or grows at one place (a sliver, a
+    /// slot, a sharp edge of the geometry) shows there.
+    double max_residual = 0;
+    std::array<double, 3> max_residual_at{};
     ForceCoefficients forces;
 };
 
