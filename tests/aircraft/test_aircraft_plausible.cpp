@@ -48,7 +48,7 @@ TEST(AircraftPlausible, GiantFuselageRefused) {
     expect_parts(load_error(variant("  length: 10.39 ", "  length: 2e9 ")),
                  {"ranger.yaml:26", "geometry.length", "'2e9'", "out of range", "(0, 1000] [m]"});
     expect_parts(load_error(variant("9.80, 10.39]", "9.80, 2e9]")),
-                 {"geometry.fuselage.x[14]", "'2e9'", "[-1000, 1000] [m]"});
+                 {"geometry.fuselage.x[17]", "'2e9'", "[-1000, 1000] [m]"});
 }
 
 TEST(AircraftPlausible, ReferenceAndMassBounded) {

@@ -68,7 +68,7 @@ TEST(GeometryErrors, OverlappingTwinFinsSelfIntersect) {
     EXPECT_NE(msg.find("geometry.lifting_surfaces[2].sections[0].leading_edge"), std::string::npos)
         << msg;
     EXPECT_NE(msg.find("self-intersects"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("[7.01, 0, 0.45]"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[7.01, 0, 0.42]"), std::string::npos) << msg;
     EXPECT_NE(msg.find("aircraft.yaml:"), std::string::npos) << msg;  // with the line
 }
 
@@ -104,8 +104,8 @@ TEST(GeometryErrors, DegenerateAirfoil) {
         }
     }
     const auto msg =
-        error_of(replaced(ranger_text(), "airfoil: NACA 0010\n        - leading_edge: [8.20",
-                          "airfoil_file: " + foil.string() + "\n        - leading_edge: [8.20"));
+        error_of(replaced(ranger_text(), "airfoil: NACA 0010\n        - leading_edge: [8.275",
+                          "airfoil_file: " + foil.string() + "\n        - leading_edge: [8.275"));
     EXPECT_NE(msg.find("geometry.lifting_surfaces[2].sections[0].airfoil_file"), std::string::npos)
         << msg;
     EXPECT_NE(msg.find("degenerate"), std::string::npos) << msg;
