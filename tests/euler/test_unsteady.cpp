@@ -94,6 +94,20 @@ struct SteadyChannel : Channel {
     }
 };
 
+/// The steady channel flow with the entropy wave's density bump (amplitude 10 %, radius 0.2,
+/// centred at x = -0.5, y = 0.4, at the local pressure and velocity).
+euler::NodeStates with_density_bump(const SteadyChannel& ch) {
+    euler::NodeStates U0 = ch.U;
+    for (Eigen::Index i = 0; i < U0.cols(); ++i) {
+        const Eigen::Vector3d x = ch.mesh.node(static_cast<mesh::Index>(i));
+        const double r2 = (x.x() + 0.5) * (x.x() + 0.5) + (x.y() - 0.4) * (x.y() - 0.4);
+        euler::Vec5 W = euler::primitive(U0.col(i), 1.4);
+        W[0] *= 1.0 + 0.1 * std::exp(-r2 / 0.04);
+        U0.col(i) = euler::conservative(W, 1.4);
+    }
+    return U0;
+}
+
 /// An entropy wave: the steady channel flow with a Gaussian density bump (amplitude 10 %,
 /// radius 0.2, at the local pressure and velocity) centred at x = -0.5, y = 0.4, advanced to
 /// t = 0.2 (the bump moves by about 0.1) with step dt; returns the state. `base`: settings of
@@ -107,15 +121,7 @@ euler::NodeStates entropy_wave(const SteadyChannel& ch, int order, double dt,
     t.inner_drop = 8;  // inner iterations converged far below the time error
     t.max_inner = 100;
     euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, t);
-    euler::NodeStates U0 = ch.U;
-    for (Eigen::Index i = 0; i < U0.cols(); ++i) {
-        const Eigen::Vector3d x = ch.mesh.node(static_cast<mesh::Index>(i));
-        const double r2 = (x.x() + 0.5) * (x.x() + 0.5) + (x.y() - 0.4) * (x.y() - 0.4);
-        euler::Vec5 W = euler::primitive(U0.col(i), 1.4);
-        W[0] *= 1.0 + 0.1 * std::exp(-r2 / 0.04);
-        U0.col(i) = euler::conservative(W, 1.4);
-    }
-    s.set_state(U0);
+    s.set_state(with_density_bump(ch));
     const int steps = static_cast<int>(std::lround(0.2 / dt));
     if (inner) *inner = 0;
     for (int n = 0; n < steps; ++n) {
@@ -205,15 +211,7 @@ TEST(UnsteadySolver, LimiterFrozenAfterTheSetInnerIterationsOfEachStep) {
         t.max_inner = 30;
         t.freeze_limiter_inner = freeze;
         euler::UnsteadySolver s(ch.domain(), ch.comm, ch.setup, t);
-        euler::NodeStates U0 = ch.U;
-        for (Eigen::Index i = 0; i < U0.cols(); ++i) {
-            const Eigen::Vector3d x = ch.mesh.node(static_cast<mesh::Index>(i));
-            const double r2 = (x.x() + 0.5) * (x.x() + 0.5) + (x.y() - 0.4) * (x.y() - 0.4);
-            euler::Vec5 W = euler::primitive(U0.col(i), 1.4);
-            W[0] *= 1.0 + 0.1 * std::exp(-r2 / 0.04);
-            U0.col(i) = euler::conservative(W, 1.4);
-        }
-        s.set_state(U0);
+        s.set_state(with_density_bump(ch));
         std::vector<double> at_freeze, previous_step;
         for (int n = 0; n < 3; ++n) {
             std::vector<double> last;
