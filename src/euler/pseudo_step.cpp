@@ -318,9 +318,15 @@ StepOutcome PseudoTimeStep::step(NodeStates& U, IterationState& it, const StopRu
         if (it.backoffs > s.max_backoffs)
             throw ConvergenceError(fmt::format(
                 "{}: the iteration diverged at iteration {} ({}) after {} CFL back-offs "
-                "(CFL {:.3g}); try a smaller solver.cfl_max, first-order start iterations "
+                "(CFL {:.3g}){}; try a smaller solver.cfl_max, first-order start iterations "
                 "(solver.first_order_iterations) or order 1",
-                domain_.mesh->source(), it.iteration, why, s.max_backoffs, it.cfl));
+                domain_.mesh->source(), it.iteration, why, s.max_backoffs, it.cfl,
+                out.record.max_residual > 0.0
+                    ? fmt::format(", the largest density residual at ({:.4g}, {:.4g}, {:.4g}) "
+                                  "in the mesh's coordinates",
+                                  out.record.max_residual_at[0], out.record.max_residual_at[1],
+                                  out.record.max_residual_at[2])
+                    : std::string()));
         std::copy(U_good_.begin(), U_good_.end(), U.data());
         matrix_current_ = false;
         it.cfl_cap = std::max(s.cfl_initial * 0.1, 0.25 * std::min(it.cfl, it.cfl_cap));

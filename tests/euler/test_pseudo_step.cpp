@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "manta/core/error.hpp"
 #include "manta/euler/config.hpp"
@@ -336,6 +337,29 @@ TEST(PseudoTimeStep, RecordsTheLargestDensityResidualAndWhereItIs) {
         near = near || (e[0] == k && e[1] == at) || (e[1] == k && e[0] == at);
     EXPECT_TRUE(near) << "largest residual at node " << at << ", perturbed node " << k;
     EXPECT_GT(o.record.max_residual, 0.0);
+}
+
+TEST(PseudoTimeStep, DivergenceNamesWhereTheLargestResidualIs) {
+    // A NaN state at one node, no back-off allowed: the ConvergenceError says where the largest
+    // (finite) density residual was, in the mesh's coordinates, on one line.
+    Channel ch;
+    ch.setup.solver.max_backoffs = 0;
+    euler::PseudoTimeStep step(ch.domain(), ch.comm, ch.setup);
+    euler::NodeStates U(5, ch.mesh.n_nodes());
+    const euler::Vec5 U_inf = euler::conservative(step.free_stream_primitive(), 1.4);
+    for (Eigen::Index i = 0; i < U.cols(); ++i) U.col(i) = U_inf;
+    U(0, ch.mesh.n_nodes() / 2) = std::numeric_limits<double>::quiet_NaN();
+    euler::IterationState it = step.initial_state();
+    step.begin(it);
+    try {
+        (void)step.step(U, it, [](const euler::StepStatus&) { return euler::StopDecision{}; });
+        ADD_FAILURE() << "a NaN state did not stop the iteration";
+    } catch (const ConvergenceError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("NaN in the residual"), std::string::npos) << m;
+        EXPECT_NE(m.find("the largest density residual at ("), std::string::npos) << m;
+        EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
 }
 
 /// Take `n` steps from the free stream with no stopping rule; returns the state.
