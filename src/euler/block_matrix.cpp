@@ -571,10 +571,12 @@ void BlockIlu0::factorize(const BlockMatrix& A) {
         const Index bad = factorize_kernel(a, values_.data(), kept_.data(), rows_.data(),
                                            row.data(), where.data());
         if (bad >= 0)
-            throw NumericalError(fmt::format(
-                "block ILU(0): singular pivot block in row {} (local node) of the implicit "
-                "matrix; expected an invertible 5x5 diagonal block",
-                bad));
+            throw SingularBlockError(
+                fmt::format(
+                    "block ILU(0): singular pivot block in row {} (local node) of the implicit "
+                    "matrix; expected an invertible 5x5 diagonal block",
+                    bad),
+                bad);
         return;
     }
 
@@ -620,10 +622,11 @@ void BlockIlu0::factorize(const BlockMatrix& A) {
     const Index bad = factorize_kernel(a, values_.data(), a_values.data(), a_rows.data(),
                                        row.data(), where.data());
     if (bad >= 0)
-        throw NumericalError(
+        throw SingularBlockError(
             fmt::format("block ILU(0): singular pivot block in row {} (local node) of the implicit "
                         "matrix; expected an invertible 5x5 diagonal block",
-                        bad));
+                        bad),
+            bad);
 }
 
 void BlockIlu0::apply(std::span<const double> r, std::span<double> z) const noexcept {
@@ -666,10 +669,11 @@ void BlockSgs::factorize(const BlockMatrix& A) {
         const Mat5 b = A.block(A.diagonal(r));
         for (int q = 0; q < bb; ++q) d[q] = b(q / bs, q % bs);
         if (!invert5(d, inv))
-            throw NumericalError(fmt::format(
-                "block SGS: singular diagonal block in row {} (local node) of the implicit matrix; "
-                "expected an invertible 5x5 block",
-                r));
+            throw SingularBlockError(
+                fmt::format("block SGS: singular diagonal block in row {} (local node) of the "
+                            "implicit matrix; expected an invertible 5x5 block",
+                            r),
+                r);
         for (int q = 0; q < bb; ++q)
             dinv_[static_cast<std::size_t>(r) * bb + static_cast<std::size_t>(q)] =
                 static_cast<float>(inv[q]);

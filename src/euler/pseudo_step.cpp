@@ -474,6 +474,21 @@ StepOutcome PseudoTimeStep::step(NodeStates& U, IterationState& it, const StopRu
         std::string pivot_error;
         try {
             precond_->factorize(J_);
+        } catch (const SingularBlockError& e) {
+            // Where the node is, its dual volume and whether its block holds a non-finite
+            // entry: a singular block at a small CFL number points at the geometry there.
+            const Index r = e.row();
+            std::string at;
+            if (r >= 0 && r < domain_.mesh->n_nodes()) {
+                const auto x = domain_.mesh->node(r);
+                const Mat5 b = J_.block(J_.diagonal(r));
+                at = fmt::format(
+                    "; node at ({:.4g}, {:.4g}, {:.4g}) in the mesh's coordinates, dual volume "
+                    "{:.3g}{}",
+                    x[0], x[1], x[2], domain_.dual->dual_volumes[static_cast<std::size_t>(r)],
+                    b.allFinite() ? "" : ", its block not finite");
+            }
+            pivot_error = e.what() + at;
         } catch (const NumericalError& e) {
             pivot_error = e.what();
         }

@@ -264,8 +264,9 @@ TEST(BlockIlu0, SingularPivotNamesRow) {
     try {
         M.factorize(A);
         FAIL() << "no error on a singular pivot";
-    } catch (const NumericalError& e) {
+    } catch (const SingularBlockError& e) {  // a NumericalError that carries the row
         EXPECT_NE(std::string(e.what()).find("row 2 "), std::string::npos) << e.what();
+        EXPECT_EQ(e.row(), 2);
     }
     // A NaN in a block is reported as well.
     BlockMatrix B(4, 4, edges);
@@ -587,8 +588,9 @@ TEST(BlockSgs, FgmresConvergesAndSingularDiagonalNamesRow) {
     try {
         M.factorize(B);
         FAIL() << "no error on a singular diagonal block";
-    } catch (const NumericalError& e) {
+    } catch (const SingularBlockError& e) {
         EXPECT_NE(std::string(e.what()).find("row 1 "), std::string::npos) << e.what();
+        EXPECT_EQ(e.row(), 1);
     }
 }
 

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "manta/core/error.hpp"
 #include "manta/euler/gas.hpp"
 #include "manta/mesh/mesh.hpp"
 #include "manta/parallel/communicator.hpp"
@@ -23,6 +24,16 @@
 namespace manta::euler {
 
 using mesh::Index;
+
+/// A preconditioner's factorisation met a singular 5x5 block: `row()` is its local node.
+class SingularBlockError : public NumericalError {
+public:
+    SingularBlockError(const std::string& what, Index row) : NumericalError(what), row_(row) {}
+    [[nodiscard]] Index row() const noexcept { return row_; }
+
+private:
+    Index row_;
+};
 
 /// Block sparse matrix (BCSR) with one 5x5 block per edge direction and per diagonal.
 class BlockMatrix {
