@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "drift_model.hpp"
 #include "manta/core/error.hpp"
 #include "manta/optimal/model.hpp"
 #include "manta/optimal/multiphase.hpp"
@@ -257,38 +258,7 @@ TEST(MultiPhase, FreePhaseTimesWithDefaultLinks) {
 /// event; the Mayer term is the second phase's). Each leg is a straight line: u = p/4, then 3p/4,
 /// J = 5p²/16 + (p - 3)²/2, so p = 24/13 and J = 585/338. Were the parameter not shared, the
 /// first phase would take p = 0 and the second p = 3/2, J = 9/4.
-struct Drift {
-    std::string name;
-    double t0 = 0.0;
-    double share = 0.25;  // x(tf) = share * p
-    [[nodiscard]] ProblemInfo info() const {
-        ProblemInfo p;
-        p.name = name;
-        p.states = {{"x", -10.0, 10.0, 1.0}};
-        p.controls = {{"u", -10.0, 10.0, 1.0}};
-        p.parameters = {{"p", -5.0, 5.0, 1.0}};
-        p.initial_time = fixed(t0);
-        p.final_time = fixed(t0 + 1.0);
-        if (t0 == 0.0) p.set_initial("x", 0.0);
-        p.events = {{"x(tf) = share p", 0.0, 0.0, 1.0}};
-        return p;
-    }
-    template <class T>
-    void dynamics(std::span<const T> /*x*/, std::span<const T> u, std::span<const T> /*p*/,
-                  const T& /*t*/, std::span<T> xdot) const {
-        xdot[0] = u[0];
-    }
-    template <class T>
-    void events(std::span<const T> /*x0*/, std::span<const T> xf, std::span<const T> p,
-                const T& /*t0*/, const T& /*tf*/, std::span<T> e) const {
-        e[0] = xf[0] - share * p[0];
-    }
-    template <class T>
-    T lagrange(std::span<const T> /*x*/, std::span<const T> u, std::span<const T> /*p*/,
-               const T& /*t*/) const {
-        return 0.5 * u[0] * u[0];
-    }
-};
+using test::Drift;  // drift_model.hpp (x(t0) = 0 given where t0 = 0)
 struct DriftCost : Drift {
     template <class T>
     T mayer(std::span<const T> /*x0*/, std::span<const T> /*xf*/, std::span<const T> p,
@@ -304,6 +274,7 @@ MultiPhaseProblem shared_parameter() {
     b.name = "second second";
     b.t0 = 1.0;
     b.share = 1.0;
+    b.start = false;
     Eigen::VectorXd x0(1), x1(1), u(1), p(1);
     x0 << 0.0;
     x1 << 0.0;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "drift_model.hpp"
 #include "manta/core/error.hpp"
 #include "manta/optimal/model.hpp"
 #include "manta/optimal/multiphase.hpp"
@@ -139,39 +140,7 @@ TEST(MultiPhaseLinks, PhasesListedOutOfOrder) {
     EXPECT_NEAR(s.phase(1).initial_state("x"), 2.0, 1e-9);
 }
 
-/// x' = u on [t0, t0 + 1] with a shared parameter p, x(tf) = share p (an event), min ∫u²/2.
-struct Drift {
-    std::string name;
-    double t0 = 0.0, share = 0.25;
-    bool start = true, cost = false;
-    [[nodiscard]] ProblemInfo info() const {
-        ProblemInfo p;
-        p.name = name;
-        p.states = {{"x", -10.0, 10.0, 1.0}};
-        p.controls = {{"u", -10.0, 10.0, 1.0}};
-        p.parameters = {{"p", -5.0, 5.0, 1.0}};
-        p.initial_time = fixed(t0);
-        p.final_time = fixed(t0 + 1.0);
-        if (start) p.set_initial("x", 0.0);
-        p.events = {{"x(tf) = share p", 0.0, 0.0, 1.0}};
-        return p;
-    }
-    template <class T>
-    void dynamics(std::span<const T> /*x*/, std::span<const T> u, std::span<const T> /*p*/,
-                  const T& /*t*/, std::span<T> xdot) const {
-        xdot[0] = u[0];
-    }
-    template <class T>
-    void events(std::span<const T> /*x0*/, std::span<const T> xf, std::span<const T> p,
-                const T& /*t0*/, const T& /*tf*/, std::span<T> e) const {
-        e[0] = xf[0] - share * p[0];
-    }
-    template <class T>
-    T lagrange(std::span<const T> /*x*/, std::span<const T> u, std::span<const T> /*p*/,
-               const T& /*t*/) const {
-        return 0.5 * u[0] * u[0];
-    }
-};
+using test::Drift;  // drift_model.hpp
 
 TEST(MultiPhaseLinks, ParametersOfAPhaseNoLinkEnters) {
     // x' = u, min ∫u²/2 + (p - 3)²/2 with x(1) = p/4 (phase 0), x(2) = p (phase 1, linked to
